@@ -1,0 +1,49 @@
+"""railhunt: hunting stability of railway vehicles.
+
+How fast a vehicle can run before it starts hunting, at what frequency it hunts, and
+which suspension parameters move those numbers. The model is the 17-DOF lateral model of
+a high-speed vehicle described in ``docs/model.md``.
+
+Main entry points (imported lazily, so ``import railhunt`` stays fast)::
+
+    Vehicle, load_vehicle            vehicle description (SI units, validated)
+    simulate                         time integration with named channels
+    linear_critical_speed            Hopf point of the centred equilibrium
+    critical_speed                   nonlinear critical speed by bisection (the paper's)
+    eigen_analysis                   eigenvalues and hunting mode versus speed
+    SingleDefect, InitialDisplacement  excitations
+"""
+
+from __future__ import annotations
+
+from importlib import import_module
+from typing import Any
+
+__version__ = "0.1.0"
+
+_EXPORTS = {
+    "Vehicle": "railhunt.vehicle",
+    "load_vehicle": "railhunt.vehicle",
+    "ParameterError": "railhunt.vehicle",
+    "Model": "railhunt.model",
+    "simulate": "railhunt.simulation",
+    "SimulationResult": "railhunt.simulation",
+    "SingleDefect": "railhunt.track",
+    "InitialDisplacement": "railhunt.track",
+    "SampledTrack": "railhunt.track",
+    "linear_critical_speed": "railhunt.analysis.linear",
+    "eigen_analysis": "railhunt.analysis.linear",
+    "critical_speed": "railhunt.analysis.critical",
+}
+
+__all__ = sorted(_EXPORTS)
+
+
+def __getattr__(name: str) -> Any:
+    if name in _EXPORTS:
+        return getattr(import_module(_EXPORTS[name]), name)
+    raise AttributeError(f"module 'railhunt' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(list(globals()) + __all__)

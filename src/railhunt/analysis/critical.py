@@ -1,0 +1,275 @@
+"""Nonlinear critical speed by the paper's dichotomy (excitation type (b)).
+
+Each trial speed is simulated with a single lateral track defect followed by ideal track,
+and judged from the envelope of the leading wheelset's lateral displacement after the
+defect: *stable* (decays to the centred equilibrium) or *hunting* (settles on a limit
+cycle, or derails). A run is extended chunk by chunk until its envelope is clearly decayed
+or clearly stationary, so that a slowly decaying or slowly growing run is not misjudged
+at the end of a fixed window. The search starts at 300 km/h, steps by 10 km/h until the
+verdict changes, then bisects to 1 km/h; the critical speed is the highest stable speed.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from railhunt.model import N_STATE, Y_W1, Model
+from railhunt.simulation import Y_LIMIT, excitation_end_time, integrate_model
+from railhunt.track import SingleDefect
+from railhunt.vehicle import Vehicle
+
+STABLE, HUNTING = "stable", "hunting"
+
+
+@dataclass(frozen=True)
+class Judgement:
+    """How a run is judged (all thresholds in SI units).
+
+    Parameters
+    ----------
+    decay_amplitude : float
+        Envelope below which the motion counts as decayed to equilibrium (m).
+    settle_window : float
+        Length of the window over which a limit cycle must be stationary (s).
+    settle_rate : float
+        Largest |d ln(amplitude)/dt| of a stationary envelope (1/s).
+    chunk : float
+        Simulated time added each time the verdict is still open (s).
+    max_duration : float
+        Longest simulated time after the excitation (s); a run still open then is judged
+        by the sign of its envelope trend and marked undecided.
+    """
+
+    decay_amplitude: float = 2e-5
+    settle_window: float = 3.0
+    settle_rate: float = 0.01
+    chunk: float = 3.0
+    max_duration: float = 60.0
+
+    def __post_init__(self) -> None:
+        for name in ("decay_amplitude", "settle_window", "settle_rate", "chunk", "max_duration"):
+            value = getattr(self, name)
+            if not (math.isfinite(value) and value > 0):
+                raise ValueError(f"{name} = {value!r} is invalid: must be finite and > 0")
+
+
+@dataclass
+class Trial:
+    """One simulated speed and its verdict."""
+
+    speed_kmh: float
+    verdict: str
+    amplitude: float  # final envelope of the leading wheelset's lateral displacement (m)
+    growth_rate: float  # d ln(envelope)/dt over the last window (1/s)
+    duration: float  # simulated time (s)
+    decided: bool  # False when max_duration ran out and the trend decided
+    status: str  # integrator status ("ok", "derailed", ...)
+
+
+@dataclass
+class CriticalSpeedResult:
+    """Outcome of :func:`critical_speed`.
+
+    Attributes
+    ----------
+    speed_kmh : float
+        Nonlinear critical speed: the highest speed judged stable below the lowest speed
+        judged hunting (km/h); NaN when the search did not bracket a change.
+    trials : list of Trial
+        Every speed tried, in order, with its verdict.
+    bracketed : bool
+        True when a stable and a hunting speed were found within ``tol_kmh``.
+    """
+
+    speed_kmh: float
+    trials: list[Trial] = field(default_factory=list)
+    bracketed: bool = True
+    excitation: object = None
+
+    @property
+    def first_hunting_kmh(self) -> float:
+        """Lowest speed judged hunting (km/h)."""
+        hunting = [t.speed_kmh for t in self.trials if t.verdict == HUNTING]
+        return min(hunting) if hunting else math.nan
+
+
+def envelope_peaks(t: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Times and values of the local maxima of ``|y|`` (one per half cycle)."""
+    a = np.abs(y)
+    if a.size < 3:
+        return t[:0], a[:0]
+    idx = np.nonzero((a[1:-1] >= a[:-2]) & (a[1:-1] > a[2:]))[0] + 1
+    return t[idx], a[idx]
+
+
+def judge(
+    t: np.ndarray, y: np.ndarray, t_start: float, judgement: Judgement, final: bool = False
+) -> tuple[str | None, float, float]:
+    """Verdict on a displacement history after ``t_start``.
+
+    Returns
+    -------
+    verdict : {"stable", "hunting"} or None
+        None while the run is still undecided (and ``final`` is False).
+    amplitude : float
+        Latest envelope value (m).
+    growth_rate : float
+        Slope of ``ln(envelope)`` over the last ``settle_window`` (1/s); NaN if unknown.
+    """
+    mask = t >= t_start
+    tt, yy = t[mask], y[mask]
+    if tt.size < 3:
+        return None, math.nan, math.nan
+    pt, pa = envelope_peaks(tt, yy)
+    recent = tt >= tt[-1] - min(1.0, judgement.settle_window)
+    amplitude = float(np.max(np.abs(yy[recent])))
+    if amplitude < judgement.decay_amplitude:
+        return STABLE, amplitude, math.nan
+    win = pt >= tt[-1] - judgement.settle_window
+    rate = math.nan
+    if np.count_nonzero(win) >= 4 and tt[-1] - t_start >= judgement.settle_window:
+        rate = float(np.polyfit(pt[win], np.log(pa[win]), 1)[0])
+        spread = (pa[win].max() - pa[win].min()) / pa[win].mean()
+        if abs(rate) < judgement.settle_rate and spread < 0.05:
+            return HUNTING, float(pa[win][-1]), rate
+    if final:
+        return (STABLE if (math.isnan(rate) or rate < 0) else HUNTING), amplitude, rate
+    return None, amplitude, rate
+
+
+def run_trial(
+    model: Model,
+    speed_kmh: float,
+    excitation: object,
+    judgement: Judgement,
+    method: str = "rk4",
+    dt: float = 5e-4,
+    output_dt: float = 2e-3,
+) -> Trial:
+    """Simulate one speed, chunk by chunk, until the verdict is clear."""
+    speed = speed_kmh / 3.6
+    t_exc = excitation_end_time(model, excitation, speed)
+    t_end = t_exc + judgement.chunk
+    x0 = np.zeros(N_STATE)
+    t, x, code, _ = integrate_model(
+        model, speed, t_end, x0, excitation=excitation, method=method, dt=dt,
+        output_dt=output_dt, y_limit=Y_LIMIT,
+    )  # fmt: skip
+    ts, ys = [t], [x[:, Y_W1]]
+    while True:
+        tt = np.concatenate(ts)
+        yy = np.concatenate(ys)
+        if code != 0:
+            status = {1: "derailed", 2: "diverged", 3: "step-failed"}[code]
+            return Trial(speed_kmh, HUNTING, float(np.max(np.abs(yy[-50:]))), math.nan,
+                         float(tt[-1]), True, status)  # fmt: skip
+        final = tt[-1] - t_exc >= judgement.max_duration - 1e-9
+        verdict, amp, rate = judge(tt, yy, t_exc, judgement, final=final)
+        if verdict is not None:
+            return Trial(speed_kmh, verdict, amp, rate, float(tt[-1]), not final, "ok")
+        t, x, code, _ = integrate_model(
+            model, speed, judgement.chunk, x[-1].copy(), t0=float(t[-1]), excitation=excitation,
+            method=method, dt=dt, output_dt=output_dt, y_limit=Y_LIMIT,
+        )  # fmt: skip
+        ts.append(t[1:])
+        ys.append(x[1:, Y_W1])
+
+
+def critical_speed(
+    vehicle: Vehicle,
+    excitation: object = None,
+    start_kmh: float = 300.0,
+    step_kmh: float = 10.0,
+    tol_kmh: float = 1.0,
+    min_kmh: float = 20.0,
+    max_kmh: float = 800.0,
+    judgement: Judgement | None = None,
+    method: str = "rk4",
+    dt: float = 5e-4,
+    creep_law: str = "heuristic",
+    progress: Callable[[Trial], None] | None = None,
+) -> CriticalSpeedResult:
+    """Nonlinear critical speed by bisection (the paper's Sec. 4, excitation type (b)).
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        Vehicle description.
+    excitation : SingleDefect, optional
+        Track defect run over at every trial speed. Default: a 8 mm, 20 m lateral
+        alignment bump, large enough to throw the default vehicle onto its large limit
+        cycle wherever one exists (so the result is the fold of the bifurcation diagram).
+    start_kmh, step_kmh, tol_kmh : float
+        First speed, bracketing step and final resolution (km/h).
+    min_kmh, max_kmh : float
+        Search limits (km/h).
+    judgement : Judgement, optional
+        Thresholds for judging a run (see :class:`Judgement`).
+    method : {"rk4", "dopri5"}
+        Integrator; ``dt`` is the RK4 step (s).
+    creep_law : str
+        See :class:`railhunt.model.Model`.
+    progress : callable, optional
+        Called with each :class:`Trial` as it finishes.
+
+    Returns
+    -------
+    CriticalSpeedResult
+    """
+    if excitation is None:
+        excitation = SingleDefect()
+    judgement = judgement or Judgement()
+    for name, value in (("start_kmh", start_kmh), ("step_kmh", step_kmh), ("tol_kmh", tol_kmh),
+                        ("min_kmh", min_kmh), ("max_kmh", max_kmh)):  # fmt: skip
+        if not (math.isfinite(value) and value > 0):
+            raise ValueError(f"{name} = {value!r} km/h is invalid: must be finite and > 0")
+    if not (min_kmh <= start_kmh <= max_kmh):
+        raise ValueError(
+            f"start_kmh = {start_kmh} km/h is invalid: must lie in [min_kmh, max_kmh] = "
+            f"[{min_kmh}, {max_kmh}] km/h"
+        )
+    if tol_kmh > step_kmh:
+        raise ValueError(f"tol_kmh = {tol_kmh} km/h is invalid: must be <= step_kmh = {step_kmh}")
+    model = Model(vehicle, creep_law=creep_law)
+    trials: list[Trial] = []
+
+    def verdict(speed_kmh: float) -> str:
+        trial = run_trial(model, speed_kmh, excitation, judgement, method=method, dt=dt)
+        trials.append(trial)
+        if progress is not None:
+            progress(trial)
+        return trial.verdict
+
+    speed = start_kmh
+    first = verdict(speed)
+    lo = hi = math.nan
+    if first == STABLE:
+        lo = speed
+        while speed + step_kmh <= max_kmh + 1e-9:
+            speed += step_kmh
+            if verdict(speed) == HUNTING:
+                hi = speed
+                break
+            lo = speed
+    else:
+        hi = speed
+        while speed - step_kmh >= min_kmh - 1e-9:
+            speed -= step_kmh
+            if verdict(speed) == STABLE:
+                lo = speed
+                break
+            hi = speed
+    if math.isnan(lo) or math.isnan(hi):
+        return CriticalSpeedResult(math.nan, trials, bracketed=False, excitation=excitation)
+    while hi - lo > tol_kmh + 1e-9:
+        mid = lo + tol_kmh * round((hi - lo) / (2 * tol_kmh))
+        mid = min(max(mid, lo + tol_kmh), hi - tol_kmh)
+        if verdict(mid) == STABLE:
+            lo = mid
+        else:
+            hi = mid
+    return CriticalSpeedResult(lo, trials, bracketed=True, excitation=excitation)

@@ -1,0 +1,193 @@
+"""Linear stability of the centred equilibrium: eigenvalues, hunting mode, Hopf speed.
+
+The Jacobian of the one compiled right-hand side (:func:`railhunt.model.jacobian`, central
+differences) at the centred state on ideal track is the linearised system. Its eigenvalues
+versus speed give the root locus; the *hunting mode* is the least-damped oscillatory mode
+whose eigenvector is dominated by a wheelset's lateral/yaw motion; the *linear critical
+speed* is where the least-damped eigenvalue's real part crosses zero.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from railhunt.model import N_STATE, Model
+from railhunt.vehicle import Vehicle
+
+_WHEELSET_Y = np.arange(9, 17, 2)
+_WHEELSET_PSI = _WHEELSET_Y + 1
+
+
+@dataclass
+class EigenResult:
+    """Eigenvalues of the linearised model at a set of speeds.
+
+    Attributes
+    ----------
+    speeds_kmh : numpy.ndarray
+        Speeds (km/h).
+    eigenvalues : numpy.ndarray, shape (n_speeds, 38)
+        Eigenvalues (1/s), complex, sorted by decreasing real part.
+    hunting : numpy.ndarray, shape (n_speeds,)
+        Hunting-mode eigenvalue at each speed (upper half plane), complex (1/s).
+    """
+
+    speeds_kmh: np.ndarray
+    eigenvalues: np.ndarray
+    hunting: np.ndarray
+
+    @property
+    def hunting_frequency_hz(self) -> np.ndarray:
+        """Hunting-mode frequency ``Im(lambda) / 2 pi`` (Hz)."""
+        return self.hunting.imag / (2 * math.pi)
+
+    @property
+    def hunting_damping_ratio(self) -> np.ndarray:
+        """Hunting-mode damping ratio ``-Re(lambda) / |lambda|`` (dimensionless)."""
+        return -self.hunting.real / np.abs(self.hunting)
+
+
+@dataclass
+class LinearCriticalSpeed:
+    """Outcome of :func:`linear_critical_speed`.
+
+    Attributes
+    ----------
+    speed_kmh : float
+        Speed where the least-damped eigenvalue crosses into the right half plane (km/h);
+        NaN when none does in the searched range.
+    frequency_hz : float
+        Frequency of the crossing eigenvalue there (Hz).
+    eigenvalue : complex
+        The crossing eigenvalue (1/s), real part ~0.
+    is_hunting_mode : bool
+        True when the crossing mode is the wheelset hunting mode.
+    """
+
+    speed_kmh: float
+    frequency_hz: float
+    eigenvalue: complex
+    is_hunting_mode: bool
+
+
+def eigenvalues(model: Model, speed: float) -> tuple[np.ndarray, np.ndarray]:
+    """Eigenvalues and eigenvectors of the Jacobian at the centred state (speed in m/s)."""
+    w, vecs = np.linalg.eig(model.jacobian(speed))
+    order = np.argsort(-w.real)
+    return w[order], vecs[:, order]
+
+
+def hunting_mode_index(w: np.ndarray, vecs: np.ndarray, a: float) -> int:
+    """Index of the hunting mode among eigenpairs ``(w, vecs)``.
+
+    Among the oscillatory modes (Im > 0) whose largest lateral displacement amplitude
+    (yaw angles scaled by the half gauge ``a``) belongs to a wheelset, the least damped
+    (largest real part). Falls back to the least-damped oscillatory mode.
+    """
+    best, best_any = -1, -1
+    for k in range(w.size):
+        if w[k].imag <= 1e-6:
+            continue
+        if best_any < 0 or w[k].real > w[best_any].real:
+            best_any = k
+        q = vecs[:17, k]
+        lateral = np.abs(q[[0, 3, 6]])
+        wheel = np.concatenate([np.abs(q[_WHEELSET_Y]), a * np.abs(q[_WHEELSET_PSI])])
+        if wheel.max() >= lateral.max() and (best < 0 or w[k].real > w[best].real):
+            best = k
+    return best if best >= 0 else best_any
+
+
+def eigen_analysis(
+    vehicle: Vehicle, speeds_kmh: np.ndarray | list[float], creep_law: str = "heuristic"
+) -> EigenResult:
+    """Eigenvalues of the linearised model and the hunting mode at each speed.
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        Vehicle description.
+    speeds_kmh : array_like
+        Speeds (km/h), each > 0.
+    creep_law : str
+        See :class:`railhunt.model.Model`.
+    """
+    speeds = np.asarray(speeds_kmh, dtype=float)
+    if speeds.ndim != 1 or speeds.size == 0 or not np.all(np.isfinite(speeds) & (speeds > 0)):
+        raise ValueError("speeds_kmh must be a non-empty 1-D list of finite speeds > 0 km/h")
+    model = Model(vehicle, creep_law=creep_law)
+    eig = np.empty((speeds.size, N_STATE), dtype=complex)
+    hunt = np.empty(speeds.size, dtype=complex)
+    for i, s in enumerate(speeds):
+        w, vecs = eigenvalues(model, s / 3.6)
+        eig[i] = w
+        hunt[i] = w[hunting_mode_index(w, vecs, vehicle.a)]
+    return EigenResult(speeds, eig, hunt)
+
+
+def linear_critical_speed(
+    vehicle: Vehicle,
+    min_kmh: float = 20.0,
+    max_kmh: float = 1000.0,
+    tol_kmh: float = 0.01,
+    creep_law: str = "heuristic",
+) -> LinearCriticalSpeed:
+    """Lowest speed at which the centred equilibrium loses stability (Hopf point).
+
+    The largest real part over all eigenvalues is scanned on a grid from ``min_kmh`` to
+    ``max_kmh`` (5 km/h steps) and its first sign change refined by Brent's method to
+    ``tol_kmh``.
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        Vehicle description.
+    min_kmh, max_kmh : float
+        Search range (km/h).
+    tol_kmh : float
+        Resolution (km/h).
+    creep_law : str
+        See :class:`railhunt.model.Model`.
+
+    Returns
+    -------
+    LinearCriticalSpeed
+        ``.speed_kmh`` and ``.frequency_hz`` of the crossing mode.
+    """
+    if not (0 < min_kmh < max_kmh and math.isfinite(max_kmh)):
+        raise ValueError(
+            f"min_kmh = {min_kmh}, max_kmh = {max_kmh} are invalid: need 0 < min_kmh < max_kmh"
+        )
+    model = Model(vehicle, creep_law=creep_law)
+
+    def growth(kmh: float) -> float:
+        return float(np.max(np.linalg.eigvals(model.jacobian(kmh / 3.6)).real))
+
+    grid = np.arange(min_kmh, max_kmh + 1e-9, 5.0)
+    prev = growth(grid[0])
+    if prev > 0:
+        lo_hi = None
+        speed = grid[0]
+    else:
+        lo_hi = None
+        for lo, hi in zip(grid[:-1], grid[1:], strict=True):
+            g = growth(hi)
+            if g > 0:
+                lo_hi = (lo, hi)
+                break
+        if lo_hi is None:
+            return LinearCriticalSpeed(math.nan, math.nan, complex(math.nan), False)
+        speed = brentq(growth, *lo_hi, xtol=tol_kmh)
+    w, vecs = eigenvalues(model, speed / 3.6)
+    k = int(np.argmax(w.real))
+    if abs(w[k].imag) < 1e-9:
+        is_hunting = False
+    else:
+        kk = k if w[k].imag > 0 else int(np.argmin(np.abs(w - np.conj(w[k]))))
+        is_hunting = kk == hunting_mode_index(w, vecs, vehicle.a)
+    return LinearCriticalSpeed(float(speed), abs(w[k].imag) / (2 * math.pi), complex(w[k]),
+                               is_hunting)  # fmt: skip

@@ -1,0 +1,245 @@
+"""Time-domain simulation of the vehicle with named output channels."""
+
+from __future__ import annotations
+
+import csv
+import math
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from railhunt import integrate
+from railhunt.model import N_STATE, STATE_NAMES, Model
+from railhunt.suspension import DAMPER_NAMES, N_DAMPER
+from railhunt.track import InitialDisplacement, SampledTrack, SingleDefect
+from railhunt.vehicle import Vehicle
+
+#: Default derailment limit: lateral wheelset displacement relative to the track (m).
+Y_LIMIT = 0.025
+METHODS = ("rk4", "dopri5")
+
+
+@dataclass
+class SimulationResult:
+    """Time histories of one run.
+
+    Attributes
+    ----------
+    t : numpy.ndarray
+        Times (s).
+    x : numpy.ndarray
+        States, one row per time (see :data:`railhunt.model.STATE_NAMES`).
+    speed : float
+        Forward speed (m/s).
+    status : str
+        ``"ok"``, ``"derailed"`` (a wheelset's lateral displacement exceeded the limit),
+        ``"diverged"`` (non-finite state) or ``"step-failed"``.
+    message : str
+        Human-readable description of how the run ended.
+    damper_velocity : numpy.ndarray
+        Velocity of the viscous part of each yaw damper (m/s), one column per damper.
+    excitation_end : float
+        Time (s) at which the last wheelset has left the excitation.
+    """
+
+    t: np.ndarray
+    x: np.ndarray
+    speed: float
+    status: str
+    message: str
+    damper_velocity: np.ndarray
+    excitation_end: float = 0.0
+    stats: dict = field(default_factory=dict)
+
+    @property
+    def speed_kmh(self) -> float:
+        """Forward speed (km/h)."""
+        return self.speed * 3.6
+
+    @property
+    def ok(self) -> bool:
+        """True when the run reached its end time."""
+        return self.status == "ok"
+
+    @property
+    def channel_names(self) -> tuple[str, ...]:
+        """All channel names: states (``y_w1``, ``dy_w1``, ``F_d1``, ...) and ``v_d1..v_d4``."""
+        return STATE_NAMES + tuple("v_" + n for n in DAMPER_NAMES)
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        if name in STATE_NAMES:
+            return self.x[:, STATE_NAMES.index(name)]
+        if name.startswith("v_") and name[2:] in DAMPER_NAMES:
+            return self.damper_velocity[:, DAMPER_NAMES.index(name[2:])]
+        raise KeyError(
+            f"unknown channel {name!r}; channels are: {', '.join(self.channel_names)}"
+        )
+
+    def table(self) -> tuple[list[str], np.ndarray]:
+        """Column names (with units) and a 2-D array: time, all channels."""
+        units = {"y": "m", "psi": "rad", "phi": "rad", "dy": "m/s", "dpsi": "rad/s",
+                 "dphi": "rad/s", "F": "N", "v": "m/s"}  # fmt: skip
+        names = ["t [s]"] + [f"{n} [{units[n.split('_')[0]]}]" for n in self.channel_names]
+        return names, np.column_stack([self.t, self.x, self.damper_velocity])
+
+    def to_csv(self, path: str | os.PathLike[str]) -> Path:
+        """Write all channels to a CSV file (SI units, header with units)."""
+        path = Path(path)
+        names, data = self.table()
+        with path.open("w", newline="") as fh:
+            w = csv.writer(fh)
+            w.writerow(names)
+            for row in data:
+                w.writerow([f"{val:.9g}" for val in row])
+        return path
+
+
+def _initial_state(model: Model, excitation: object, x0: np.ndarray | None) -> np.ndarray:
+    x = np.zeros(N_STATE) if x0 is None else np.array(x0, dtype=np.float64)
+    if x.shape != (N_STATE,):
+        raise ValueError(f"x0 has shape {x.shape}: must be ({N_STATE},)")
+    if isinstance(excitation, InitialDisplacement):
+        for w in excitation.wheelsets:
+            x[STATE_NAMES.index(f"y_w{w}")] += excitation.amplitude
+    return x
+
+
+def excitation_end_time(model: Model, excitation: object, speed: float) -> float:
+    """Time (s) at which the last wheelset leaves the excitation (0 for none)."""
+    if isinstance(excitation, (SingleDefect, SampledTrack)):
+        return (excitation.end() + model.wheelset_offsets()[-1]) / speed
+    return 0.0
+
+
+def default_atol() -> np.ndarray:
+    """Absolute tolerances per state for the adaptive integrator (state units)."""
+    return np.concatenate([np.full(17, 1e-8), np.full(17, 1e-7), np.full(N_DAMPER, 1e-3)])
+
+
+def integrate_model(
+    model: Model,
+    speed: float,
+    duration: float,
+    x0: np.ndarray,
+    t0: float = 0.0,
+    excitation: object = None,
+    method: str = "rk4",
+    dt: float = 5e-4,
+    output_dt: float | None = None,
+    rtol: float = 1e-6,
+    atol: np.ndarray | None = None,
+    y_limit: float = Y_LIMIT,
+) -> tuple[np.ndarray, np.ndarray, int, dict]:
+    """Integrate the model (low-level; :func:`simulate` is the friendly entry point).
+
+    Returns times, states, the integrator's status code and a dict of statistics.
+    """
+    args = model.args(speed, excitation)
+    if method == "rk4":
+        n_steps = int(round(duration / dt))
+        stride = 1 if output_dt is None else max(1, int(round(output_dt / dt)))
+        t, x, status = integrate.rk4(x0, t0, dt, n_steps, stride, y_limit, *args)
+        return t, x, status, {"steps": n_steps, "rhs_calls": 4 * n_steps}
+    if method == "dopri5":
+        atol_v = default_atol() if atol is None else np.broadcast_to(atol, (N_STATE,)).copy()
+        out_dt = -1.0 if output_dt is None else float(output_dt)
+        max_steps = int(max(1000, duration / 1e-5))
+        t, x, status, n_acc, n_rej = integrate.dopri5(
+            x0, t0, t0 + duration, out_dt, rtol, atol_v, 1e-4, 0.01, max_steps, y_limit, *args
+        )
+        stats = {"steps": n_acc, "rejected": n_rej, "rhs_calls": 6 * (n_acc + n_rej) + 1}
+        return t, x, status, stats
+    raise ValueError(f"method = {method!r} is invalid: must be one of {METHODS}")
+
+
+def _check_positive(name: str, value: float, unit: str, low: float = 0.0,
+                    high: float = math.inf) -> float:
+    value = float(value)
+    if not (math.isfinite(value) and low < value <= high):
+        raise ValueError(
+            f"{name} = {value!r} {unit} is invalid: must be finite and in ({low}, {high}] {unit}"
+        )
+    return value
+
+
+def simulate(
+    vehicle: Vehicle,
+    speed_kmh: float,
+    duration: float = 10.0,
+    excitation: object = None,
+    method: str = "rk4",
+    dt: float = 5e-4,
+    output_dt: float | None = None,
+    rtol: float = 1e-6,
+    x0: np.ndarray | None = None,
+    creep_law: str = "heuristic",
+    y_limit: float = Y_LIMIT,
+    model: Model | None = None,
+) -> SimulationResult:
+    """Simulate the vehicle at constant speed on straight track.
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        Vehicle description.
+    speed_kmh : float
+        Forward speed (km/h), in (0, 1000].
+    duration : float
+        Simulated time (s).
+    excitation : SingleDefect or InitialDisplacement or SampledTrack, optional
+        Track input or initial condition; ideal track and ``x0`` (default centred) otherwise.
+    method : {"rk4", "dopri5"}
+        Fixed-step classical Runge-Kutta (the paper's) or adaptive Dormand-Prince 5(4).
+    dt : float
+        Step of ``"rk4"`` (s).
+    output_dt : float, optional
+        Resample to this fixed step (s): every n-th step for RK4, cubic Hermite dense
+        output for the adaptive method. Default: every step.
+    rtol : float
+        Relative tolerance of ``"dopri5"``.
+    x0 : numpy.ndarray, optional
+        Initial state (38 values, SI).
+    creep_law : str
+        See :class:`railhunt.model.Model`.
+    y_limit : float
+        Lateral wheelset displacement relative to the track at which the run stops as
+        derailed (m).
+    model : Model, optional
+        A model already built for ``vehicle`` (saves assembling it again).
+
+    Returns
+    -------
+    SimulationResult
+    """
+    speed = _check_positive("speed_kmh", speed_kmh, "km/h", 0.0, 1000.0) / 3.6
+    _check_positive("duration", duration, "s", 0.0, 1e5)
+    _check_positive("dt", dt, "s", 0.0, 0.01)
+    if output_dt is not None:
+        _check_positive("output_dt", output_dt, "s", 0.0, duration)
+    _check_positive("rtol", rtol, "", 0.0, 0.1)
+    if method not in METHODS:
+        raise ValueError(f"method = {method!r} is invalid: must be one of {', '.join(METHODS)}")
+    if model is None:
+        model = Model(vehicle, creep_law=creep_law)
+    x_init = _initial_state(model, excitation, x0)
+    t, x, code, stats = integrate_model(
+        model, speed, duration, x_init, excitation=excitation, method=method, dt=dt,
+        output_dt=output_dt, rtol=rtol, y_limit=y_limit,
+    )  # fmt: skip
+    status = integrate.STATUS_NAMES[code]
+    if code == integrate.OK:
+        message = f"reached t = {t[-1]:.3f} s"
+    elif code == integrate.DERAILED:
+        message = (f"stopped at t = {t[-1]:.3f} s: a wheelset moved more than "
+                   f"{y_limit * 1e3:.1f} mm from the track centre line")  # fmt: skip
+    elif code == integrate.DIVERGED:
+        message = f"stopped at t = {t[-1]:.3f} s: the state became non-finite"
+    else:
+        message = f"stopped at t = {t[-1]:.3f} s: step size underflow"
+    vd = model.damper_velocities(x[:, -N_DAMPER:])
+    return SimulationResult(
+        t=t, x=x, speed=speed, status=status, message=message, damper_velocity=vd,
+        excitation_end=excitation_end_time(model, excitation, speed), stats=stats,
+    )  # fmt: skip

@@ -1,0 +1,160 @@
+"""Track input: ideal track, a single lateral alignment defect, sampled irregularities.
+
+Track positions ``s`` (m) are measured along the track from where the leading wheelset
+stands at ``t = 0``; wheelset ``j`` is at ``s_j(t) = v*t - offset_j`` with ``offset_j``
+its distance behind the leading wheelset, so each wheelset meets a defect in turn.
+
+The compiled right-hand side reads the track from a small array (``code``, then
+parameters) and a sample array; :func:`encode` builds them.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+IDEAL, BUMP, SINE, SAMPLED = 0, 1, 2, 3
+
+
+def _check(name: str, value: float, low: float, high: float, unit: str) -> float:
+    value = float(value)
+    if not (math.isfinite(value) and low <= value <= high):
+        raise ValueError(
+            f"{name} = {value!r} {unit} is invalid: must be finite and in [{low}, {high}] {unit}"
+        )
+    return value
+
+
+@dataclass(frozen=True)
+class SingleDefect:
+    """A single lateral alignment defect followed by ideal track (the paper's type (b)).
+
+    Parameters
+    ----------
+    amplitude : float
+        Peak lateral displacement of the rails (m), e.g. ``0.005``.
+    wavelength : float
+        Length of the defect along the track (m).
+    start : float
+        Track position where the defect begins (m), measured from the leading wheelset's
+        position at ``t = 0``.
+    shape : {"bump", "sine"}
+        ``"bump"``: ``A*(1 - cos(2*pi*x/L))/2``, a smooth one-sided kink (zero slope at
+        both ends); ``"sine"``: ``A*sin(2*pi*x/L)``, one full period.
+    """
+
+    amplitude: float = 0.008
+    wavelength: float = 20.0
+    start: float = 1.0
+    shape: str = "bump"
+
+    def __post_init__(self) -> None:
+        _check("amplitude", self.amplitude, -0.05, 0.05, "m")
+        _check("wavelength", self.wavelength, 0.5, 1000.0, "m")
+        _check("start", self.start, 0.0, 1e5, "m")
+        if self.shape not in ("bump", "sine"):
+            raise ValueError(f"shape = {self.shape!r} is invalid: must be 'bump' or 'sine'")
+
+    def end(self) -> float:
+        """Track position where the defect ends (m)."""
+        return self.start + self.wavelength
+
+
+@dataclass(frozen=True)
+class InitialDisplacement:
+    """Start from a laterally displaced wheelset on ideal track.
+
+    Parameters
+    ----------
+    amplitude : float
+        Initial lateral displacement (m).
+    wheelsets : tuple of int
+        Which wheelsets (1 = leading) are displaced; all four by default.
+    """
+
+    amplitude: float = 0.003
+    wheelsets: tuple[int, ...] = (1, 2, 3, 4)
+
+    def __post_init__(self) -> None:
+        _check("amplitude", self.amplitude, -0.05, 0.05, "m")
+        for w in self.wheelsets:
+            if w not in (1, 2, 3, 4):
+                raise ValueError(f"wheelsets contains {w!r}: wheelsets are numbered 1 to 4")
+
+    def end(self) -> float:
+        """Track position where the excitation ends (m): at the start."""
+        return 0.0
+
+
+@dataclass(frozen=True)
+class SampledTrack:
+    """A lateral alignment sampled on a uniform grid, ideal track outside it.
+
+    Parameters
+    ----------
+    s0 : float
+        Track position of the first sample (m).
+    ds : float
+        Sample spacing (m).
+    alignment : numpy.ndarray
+        Lateral rail displacement at each sample (m).
+    """
+
+    s0: float
+    ds: float
+    alignment: np.ndarray
+
+    def end(self) -> float:
+        """Track position of the last sample (m)."""
+        return self.s0 + self.ds * (len(self.alignment) - 1)
+
+
+def encode(excitation: object) -> tuple[np.ndarray, np.ndarray]:
+    """Arrays that describe the track to the compiled right-hand side.
+
+    Returns
+    -------
+    params : numpy.ndarray
+        ``[code, p1, p2, p3]``.
+    samples : numpy.ndarray
+        Alignment samples (m) for sampled track, else a one-element dummy.
+    """
+    dummy = np.zeros(1)
+    if isinstance(excitation, SingleDefect):
+        code = BUMP if excitation.shape == "bump" else SINE
+        return (
+            np.array([code, excitation.amplitude, excitation.wavelength, excitation.start]),
+            dummy,
+        )
+    if isinstance(excitation, SampledTrack):
+        samples = np.ascontiguousarray(excitation.alignment, dtype=np.float64)
+        return np.array([SAMPLED, excitation.s0, excitation.ds, len(samples)]), samples
+    return np.array([IDEAL, 0.0, 0.0, 0.0]), dummy
+
+
+@njit(cache=True)
+def alignment(s: float, params: np.ndarray, samples: np.ndarray) -> tuple[float, float]:
+    """Lateral rail displacement (m) and its slope d/ds (rad) at track position ``s``."""
+    code = int(params[0])
+    if code == BUMP or code == SINE:
+        amp, wl, s0 = params[1], params[2], params[3]
+        x = s - s0
+        if x <= 0.0 or x >= wl:
+            return 0.0, 0.0
+        k = 2.0 * math.pi / wl
+        if code == BUMP:
+            return 0.5 * amp * (1.0 - math.cos(k * x)), 0.5 * amp * k * math.sin(k * x)
+        return amp * math.sin(k * x), amp * k * math.cos(k * x)
+    if code == SAMPLED:
+        s0, ds, n = params[1], params[2], int(params[3])
+        pos = (s - s0) / ds
+        if pos <= 0.0 or pos >= n - 1:
+            return 0.0, 0.0
+        i = int(pos)
+        w = pos - i
+        slope = (samples[i + 1] - samples[i]) / ds
+        return samples[i] + w * (samples[i + 1] - samples[i]), slope
+    return 0.0, 0.0
