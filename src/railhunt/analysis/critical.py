@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from railhunt.model import N_STATE, Y_W1, Model
-from railhunt.simulation import Y_LIMIT, excitation_end_time, integrate_model
+from railhunt.simulation import Y_LIMIT, auto_step, excitation_end_time, integrate_model
 from railhunt.track import SingleDefect
 from railhunt.vehicle import Vehicle
 
@@ -147,7 +147,7 @@ def run_trial(
     excitation: object,
     judgement: Judgement,
     method: str = "rk4",
-    dt: float = 5e-4,
+    dt: float = 1e-3,
     output_dt: float = 2e-3,
 ) -> Trial:
     """Simulate one speed, chunk by chunk, until the verdict is clear."""
@@ -189,7 +189,7 @@ def critical_speed(
     max_kmh: float = 800.0,
     judgement: Judgement | None = None,
     method: str = "rk4",
-    dt: float = 5e-4,
+    dt: float | None = None,
     creep_law: str = "heuristic",
     progress: Callable[[Trial], None] | None = None,
 ) -> CriticalSpeedResult:
@@ -210,7 +210,9 @@ def critical_speed(
     judgement : Judgement, optional
         Thresholds for judging a run (see :class:`Judgement`).
     method : {"rk4", "dopri5"}
-        Integrator; ``dt`` is the RK4 step (s).
+        Integrator.
+    dt : float, optional
+        RK4 step (s); default :func:`railhunt.simulation.auto_step` at each speed.
     creep_law : str
         See :class:`railhunt.model.Model`.
     progress : callable, optional
@@ -237,8 +239,12 @@ def critical_speed(
     model = Model(vehicle, creep_law=creep_law)
     trials: list[Trial] = []
 
+    if dt is not None and not (math.isfinite(dt) and 0 < dt <= 0.01):
+        raise ValueError(f"dt = {dt!r} s is invalid: must be finite and in (0, 0.01] s")
+
     def verdict(speed_kmh: float) -> str:
-        trial = run_trial(model, speed_kmh, excitation, judgement, method=method, dt=dt)
+        step = dt if dt is not None else auto_step(model, speed_kmh / 3.6)
+        trial = run_trial(model, speed_kmh, excitation, judgement, method=method, dt=step)
         trials.append(trial)
         if progress is not None:
             progress(trial)
