@@ -13,7 +13,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
+from scipy.optimize import brentq, minimize_scalar
 
 from railhunt.model import N_STATE, Model
 from railhunt.vehicle import Vehicle
@@ -134,13 +134,16 @@ def linear_critical_speed(
     min_kmh: float = 20.0,
     max_kmh: float = 1000.0,
     tol_kmh: float = 0.01,
+    scan_step_kmh: float = 20.0,
     creep_law: str = "heuristic",
 ) -> LinearCriticalSpeed:
     """Lowest speed at which the centred equilibrium loses stability (Hopf point).
 
-    The largest real part over all eigenvalues is scanned on a grid from ``min_kmh`` to
-    ``max_kmh`` (5 km/h steps) and its first sign change refined by Brent's method to
-    ``tol_kmh``.
+    The largest real part over all eigenvalues, ``g(v)``, is scanned on a grid of
+    ``scan_step_kmh`` from ``min_kmh`` to ``max_kmh``. A sign change is refined by Brent's
+    method to ``tol_kmh``. So that a narrow window of instability between two grid points
+    is not missed, every local maximum of ``g`` on the grid that comes within 1 s^-1 of zero
+    is searched for its true maximum first.
 
     Parameters
     ----------
@@ -150,6 +153,8 @@ def linear_critical_speed(
         Search range (km/h).
     tol_kmh : float
         Resolution (km/h).
+    scan_step_kmh : float
+        Grid step of the scan (km/h).
     creep_law : str
         See :class:`railhunt.model.Model`.
 
@@ -158,30 +163,39 @@ def linear_critical_speed(
     LinearCriticalSpeed
         ``.speed_kmh`` and ``.frequency_hz`` of the crossing mode.
     """
-    if not (0 < min_kmh < max_kmh and math.isfinite(max_kmh)):
+    for name, value in (("min_kmh", min_kmh), ("max_kmh", max_kmh), ("tol_kmh", tol_kmh),
+                        ("scan_step_kmh", scan_step_kmh)):  # fmt: skip
+        if not (math.isfinite(value) and value > 0):
+            raise ValueError(f"{name} = {value!r} km/h is invalid: must be finite and > 0")
+    if min_kmh >= max_kmh:
         raise ValueError(
-            f"min_kmh = {min_kmh}, max_kmh = {max_kmh} are invalid: need 0 < min_kmh < max_kmh"
+            f"min_kmh = {min_kmh} km/h is invalid: must be below max_kmh = {max_kmh} km/h"
         )
     model = Model(vehicle, creep_law=creep_law)
 
     def growth(kmh: float) -> float:
         return float(np.max(np.linalg.eigvals(model.jacobian(kmh / 3.6)).real))
 
-    grid = np.arange(min_kmh, max_kmh + 1e-9, 5.0)
-    prev = growth(grid[0])
-    if prev > 0:
-        lo_hi = None
-        speed = grid[0]
+    grid = np.unique(np.append(np.arange(min_kmh, max_kmh, scan_step_kmh), max_kmh))
+    values = [growth(grid[0])]
+    bracket = None
+    if values[0] > 0:
+        speed = float(grid[0])
     else:
-        lo_hi = None
-        for lo, hi in zip(grid[:-1], grid[1:], strict=True):
-            g = growth(hi)
-            if g > 0:
-                lo_hi = (lo, hi)
+        for i in range(1, grid.size):
+            values.append(growth(grid[i]))
+            if values[i] > 0:
+                bracket = (grid[i - 1], grid[i])
                 break
-        if lo_hi is None:
+            if i >= 2 and values[i - 2] < values[i - 1] > values[i] and values[i - 1] > -1.0:
+                peak = minimize_scalar(lambda k: -growth(k), bounds=(grid[i - 2], grid[i]),
+                                       method="bounded", options={"xatol": tol_kmh})  # fmt: skip
+                if -peak.fun > 0:
+                    bracket = (grid[i - 2], float(peak.x))
+                    break
+        if bracket is None:
             return LinearCriticalSpeed(math.nan, math.nan, complex(math.nan), False)
-        speed = brentq(growth, *lo_hi, xtol=tol_kmh)
+        speed = brentq(growth, *bracket, xtol=tol_kmh)
     w, vecs = eigenvalues(model, speed / 3.6)
     k = int(np.argmax(w.real))
     if abs(w[k].imag) < 1e-9:

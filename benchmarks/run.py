@@ -1,0 +1,279 @@
+"""Timing report for railhunt: simulation, critical speeds, a SciPy baseline, cold start.
+
+Run from the repository root::
+
+    python benchmarks/run.py            # 5 repeats per case
+    python benchmarks/run.py --quick    # fewer repeats
+    python benchmarks/run.py --repeat 9
+
+Times are medians over the repeats, measured warm (after a first call has compiled or
+loaded the numba functions). The exit code is 0 whatever the outcome: this is a report,
+not a test. The last line lists the cases that missed their target.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import statistics
+import subprocess
+import sys
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+import railhunt
+from railhunt import model as rh_model
+from railhunt import suspension as rh_suspension
+from railhunt import track as rh_track
+from railhunt.model import N_STATE, WR_OFFSET, Y_W1, Model
+from railhunt.simulation import auto_step, default_atol
+from railhunt.suspension import N_DOF
+
+SPEED_KMH = 350.0
+DURATION = 10.0
+Y_AGREEMENT = 1e-6  # m: baseline vs railhunt DOPRI5, final y_w1
+
+COLD_SNIPPET = (
+    "import time; t=time.time(); import railhunt; v=railhunt.Vehicle.paper2019(); "
+    "railhunt.simulate(v, 300, duration=1.0); print(time.time()-t)"
+)
+
+
+@dataclass
+class Row:
+    case: str
+    seconds: float
+    target: float | None = None  # seconds; None: no target
+    note: str = ""
+
+    @property
+    def verdict(self) -> str:
+        if self.target is None:
+            return "-"
+        if not math.isfinite(self.seconds):
+            return "FAIL"
+        return "pass" if self.seconds <= self.target else "FAIL"
+
+
+def median_time(fn: Callable[[], object], repeat: int) -> tuple[float, object]:
+    """Median wall time (s) of ``fn`` over ``repeat`` calls after one warm-up call."""
+    result = fn()  # warm-up: JIT compilation or cache load
+    times = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        result = fn()
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times), result
+
+
+def fmt_time(seconds: float) -> str:
+    if not math.isfinite(seconds):
+        return "n/a"
+    if seconds < 1.0:
+        return f"{seconds * 1e3:.1f} ms"
+    return f"{seconds:.2f} s"
+
+
+# --------------------------------------------------------------------------------------
+# Baseline: the same physics as a pure-NumPy right-hand side for scipy's solve_ivp.
+# It reuses the model's assembled arrays and calls the pure-Python versions (.py_func) of
+# the compiled scalar helpers, so there is one set of equations (railhunt.model.rhs).
+# --------------------------------------------------------------------------------------
+
+
+def numpy_rhs(model: Model, speed: float, excitation: object) -> Callable:
+    """dx/dt(t, x) written with NumPy, as a typical solve_ivp user would (speed in m/s)."""
+    lin, bd, dd, dpar, wr = model.lin, model.bd, model.dd, model.dpar, model.wr
+    trk, trs = rh_track.encode(excitation)
+    offsets = wr[WR_OFFSET : WR_OFFSET + 4]
+    inv_mass = 1.0 / model.mass
+    iy = np.arange(9, 17, 2)  # wheelsets' lateral displacements
+    ip = iy + 1  # wheelsets' yaw angles
+    wheelset_forces = rh_model.wheelset_forces.py_func
+    damper_velocity = rh_suspension.damper_velocity.py_func
+    alignment = rh_track.alignment.py_func
+    nq = N_DOF
+
+    def rhs(t: float, x: np.ndarray) -> np.ndarray:
+        dq = x[nq : 2 * nq]
+        forces = x[2 * nq :]
+        acc = lin @ x[: 2 * nq] + dd @ forces
+        v_visc = np.array([damper_velocity(forces[d], *dpar[d, 1:]) for d in range(4)])
+        dforces = dpar[:, 0] * (bd @ dq - v_visc)
+        for j in range(4):
+            yr, slope = alignment(speed * t - offsets[j], trk, trs)
+            fy, mz = wheelset_forces(
+                x[iy[j]] - yr, dq[iy[j]], x[ip[j]], x[ip[j]] - slope, dq[ip[j]], speed, wr
+            )
+            acc[iy[j]] += fy * inv_mass[iy[j]]
+            acc[ip[j]] += mz * inv_mass[ip[j]]
+        return np.concatenate([dq, acc, dforces])
+
+    return rhs
+
+
+def baseline_run(vehicle: railhunt.Vehicle, excitation: object):
+    model = Model(vehicle)
+    f = numpy_rhs(model, SPEED_KMH / 3.6, excitation)
+    return solve_ivp(
+        f, (0.0, DURATION), np.zeros(N_STATE), method="RK45", rtol=1e-6, atol=default_atol()
+    )
+
+
+def check_baseline_rhs(vehicle: railhunt.Vehicle, excitation: object) -> float:
+    """Largest relative difference between the NumPy and the compiled right-hand sides."""
+    model = Model(vehicle)
+    speed = SPEED_KMH / 3.6
+    f = numpy_rhs(model, speed, excitation)
+    rng = np.random.default_rng(1)
+    worst = 0.0
+    for t in (0.0, 0.1, 0.25):
+        x = np.concatenate([rng.normal(0, 2e-3, 34), rng.normal(0, 2e3, 4)])
+        a = f(t, x)
+        b = model.derivative(x, speed, t=t, excitation=excitation)
+        worst = max(worst, float(np.max(np.abs(a - b) / (np.abs(b) + 1e-12))))
+    return worst
+
+
+def cold_start() -> float:
+    """Seconds for import + first simulate in a fresh process (second of two runs)."""
+    out = math.nan
+    for _ in range(2):  # the first run warms numba's cache
+        proc = subprocess.run(
+            [sys.executable, "-c", COLD_SNIPPET], capture_output=True, text=True, check=False
+        )
+        if proc.returncode != 0:
+            print(proc.stderr, file=sys.stderr)
+            return math.nan
+        out = float(proc.stdout.strip().splitlines()[-1])
+    return out
+
+
+# --------------------------------------------------------------------------------------
+
+
+def print_table(rows: list[Row]) -> None:
+    headers = ("case", "time (median)", "target", "pass/fail")
+    cells = [
+        (
+            r.case,
+            fmt_time(r.seconds),
+            "-" if r.target is None else f"<= {fmt_time(r.target)}",
+            r.verdict,
+        )
+        for r in rows
+    ]
+    if sys.stdout.isatty():
+        try:
+            from rich.console import Console
+            from rich.table import Table
+        except ImportError:
+            pass
+        else:
+            table = Table(title="railhunt benchmarks")
+            for h in headers:
+                table.add_column(h, justify="left" if h == "case" else "right")
+            for c in cells:
+                style = "red" if c[3] == "FAIL" else None
+                table.add_row(*c, style=style)
+            Console().print(table)
+            return
+    widths = [max(len(h), *(len(c[i]) for c in cells)) for i, h in enumerate(headers)]
+    line = "  ".join(
+        h.ljust(w) if i == 0 else h.rjust(w)
+        for i, (h, w) in enumerate(zip(headers, widths, strict=True))
+    )
+    print(line)
+    print("-" * len(line))
+    for c in cells:
+        print(
+            "  ".join(
+                s.ljust(w) if i == 0 else s.rjust(w)
+                for i, (s, w) in enumerate(zip(c, widths, strict=True))
+            )
+        )
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=5, help="repeats per case (default 5)")
+    parser.add_argument("--quick", action="store_true", help="fewer repeats (2, baseline 1)")
+    args = parser.parse_args(argv)
+    repeat = 2 if args.quick else max(1, args.repeat)
+    repeat_baseline = 1 if args.quick else min(repeat, 3)  # the baseline takes seconds
+
+    vehicle = railhunt.Vehicle.paper2019()
+    exc = railhunt.SingleDefect()
+    dt_ms = auto_step(Model(vehicle), SPEED_KMH / 3.6) * 1e3
+    rows: list[Row] = []
+    print(
+        f"railhunt {railhunt.__version__}, Python {sys.version.split()[0]}, "
+        f"{repeat} repeats (baseline {repeat_baseline}), median of warm runs\n"
+    )
+
+    t_rk4, _ = median_time(
+        lambda: railhunt.simulate(vehicle, SPEED_KMH, duration=DURATION, excitation=exc), repeat
+    )
+    rows.append(Row(f"simulate 10 s (RK4, dt={dt_ms:.1f} ms auto)", t_rk4))
+
+    t_dp, res_dp = median_time(
+        lambda: railhunt.simulate(
+            vehicle, SPEED_KMH, duration=DURATION, excitation=exc, method="dopri5"
+        ),
+        repeat,
+    )
+    rows.append(Row("simulate 10 s (DOPRI5)", t_dp))
+
+    t_lin, lin = median_time(lambda: railhunt.linear_critical_speed(vehicle), repeat)
+    rows.append(Row("linear critical speed", t_lin, 0.020))
+
+    t_nl, nl = median_time(lambda: railhunt.critical_speed(vehicle), repeat)
+    rows.append(Row("nonlinear critical speed search", t_nl, 0.3))
+
+    rhs_err = check_baseline_rhs(vehicle, exc)
+    t_base, sol = median_time(lambda: baseline_run(vehicle, exc), repeat_baseline)
+    rows.append(Row("baseline: solve_ivp + NumPy RHS, 10 s", t_base))
+
+    t_cold = cold_start()
+    rows.append(Row("import + first call (cold process, numba cache warm)", t_cold, 5.0))
+
+    print_table(rows)
+
+    y_rh = float(res_dp.x[-1, Y_W1])
+    y_base = float(sol.y[Y_W1, -1])
+    diff = abs(y_rh - y_base)
+    ok = diff <= Y_AGREEMENT and sol.status == 0 and res_dp.ok
+    print()
+    print(
+        f"results: linear critical speed {lin.speed_kmh:.1f} km/h "
+        f"({lin.frequency_hz:.2f} Hz); nonlinear {nl.speed_kmh:.0f} km/h "
+        f"({len(nl.trials)} trial speeds)"
+    )
+    print(
+        f"baseline check: NumPy RHS vs compiled RHS max rel. difference {rhs_err:.1e}; "
+        f"final y_w1 at t = {DURATION:g} s: railhunt DOPRI5 {y_rh * 1e3:+.6f} mm, "
+        f"solve_ivp {y_base * 1e3:+.6f} mm, |difference| = {diff:.2e} m "
+        f"({'agrees' if ok else 'DISAGREES'} to {Y_AGREEMENT:g} m)"
+    )
+    print(
+        f"baseline: {sol.nfev} RHS calls vs {res_dp.stats['rhs_calls']} for railhunt DOPRI5; "
+        f"speed-up of railhunt DOPRI5 over the baseline: {t_base / t_dp:.0f}x "
+        f"(RK4: {t_base / t_rk4:.0f}x)"
+    )
+
+    misses = [r.case for r in rows if r.verdict == "FAIL"]
+    if not ok:
+        misses.append("baseline agreement check")
+    if misses:
+        print(f"SUMMARY: {len(misses)} missed: " + "; ".join(misses))
+    else:
+        print("SUMMARY: all targets met")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

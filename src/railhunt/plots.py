@@ -1,0 +1,224 @@
+"""Figures for the command line: time histories, phase planes and root loci.
+
+Everything is drawn on :class:`matplotlib.figure.Figure` objects rendered by the Agg
+canvas, so no GUI backend (and no global ``pyplot`` state) is ever involved; the functions
+are safe to call from scripts, tests and worker processes without a display.
+
+Units on the axes are the engineer's units, not SI: lateral displacements in mm, lateral
+velocities in mm/s, times in s, frequencies in Hz and speeds in km/h.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
+
+if TYPE_CHECKING:
+    from railhunt.analysis.linear import EigenResult, LinearCriticalSpeed
+    from railhunt.simulation import SimulationResult
+
+__all__ = ["plot_root_locus", "plot_time_history"]
+
+#: Start of the phase-plane window (s), as in the paper's Fig. 6 (after the transient).
+PHASE_FROM = 3.0
+_DPI = 120
+
+
+def _new_figure(width: float, height: float) -> Figure:
+    fig = Figure(figsize=(width, height), layout="constrained")
+    FigureCanvasAgg(fig)
+    return fig
+
+
+def _save(fig: Figure, path: str | os.PathLike[str]) -> Path:
+    path = Path(path)
+    fig.savefig(path, dpi=_DPI)
+    return path
+
+
+def plot_time_history(
+    result: SimulationResult,
+    path: str | os.PathLike[str],
+    channel: str = "y_w1",
+    phase_from: float = PHASE_FROM,
+) -> Path:
+    """Plot a wheelset's lateral displacement history and its phase plane.
+
+    Left: lateral displacement (mm) against time (s), with the time spent on the track
+    excitation shaded. Right: lateral velocity (mm/s) against lateral displacement (mm)
+    after ``phase_from`` seconds, where a decaying spiral means a stable run and a closed
+    orbit means hunting on a limit cycle (the paper's Fig. 6).
+
+    Parameters
+    ----------
+    result : SimulationResult
+        A run of :func:`railhunt.simulate`.
+    path : str or os.PathLike
+        Output file; the format follows the suffix (``.png``, ``.pdf``, ``.svg``, ...).
+    channel : str
+        Lateral displacement channel to show, ``"y_w1"`` (leading wheelset) by default;
+        its velocity channel ``"d" + channel`` is used for the phase plane.
+    phase_from : float
+        Start of the phase-plane window (s). When the run is shorter than that, the
+        second half of the run is shown instead (and the title says so).
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+    """
+    t = np.asarray(result.t)
+    y = np.asarray(result[channel]) * 1e3
+    dy = np.asarray(result["d" + channel]) * 1e3
+    speed = result.speed_kmh
+    wheelset = channel.rsplit("_", 1)[-1]
+
+    fig = _new_figure(11.0, 4.2)
+    ax_t, ax_p = fig.subplots(1, 2, width_ratios=(1.6, 1.0))
+
+    ax_t.plot(t, y, color="tab:blue", lw=0.9)
+    t_exc = float(getattr(result, "excitation_end", 0.0) or 0.0)
+    if t_exc > 0.0 and t.size:
+        ax_t.axvspan(t[0], min(t_exc, t[-1]), color="0.85", zorder=0, label="on track defect")
+        ax_t.legend(loc="upper right", fontsize="small")
+    ax_t.axhline(0.0, color="0.5", lw=0.6)
+    ax_t.set_xlabel("time t (s)")
+    ax_t.set_ylabel(f"lateral displacement {channel} (mm)")
+    ax_t.set_title(f"{_wheelset_label(wheelset)} at {speed:.0f} km/h: {result.status}")
+    ax_t.grid(True, alpha=0.3)
+
+    start = phase_from
+    note = f"t ≥ {phase_from:g} s"
+    if t.size == 0 or t[-1] <= phase_from:
+        start = float(t[-1]) / 2.0 if t.size else 0.0
+        note = f"t ≥ {start:.2g} s\n(run shorter than {phase_from:g} s)"
+    mask = t >= start
+    ax_p.plot(y[mask], dy[mask], color="tab:red", lw=0.7)
+    if np.any(mask):
+        ax_p.plot(y[mask][-1], dy[mask][-1], "o", color="k", ms=4, label="end of run")
+        ax_p.legend(loc="upper right", fontsize="small")
+    ax_p.axhline(0.0, color="0.5", lw=0.6)
+    ax_p.axvline(0.0, color="0.5", lw=0.6)
+    ax_p.set_xlabel(f"lateral displacement {channel} (mm)")
+    ax_p.set_ylabel(f"lateral velocity d{channel} (mm/s)")
+    ax_p.set_title(f"phase plane at {speed:.0f} km/h, {note}")
+    ax_p.grid(True, alpha=0.3)
+    return _save(fig, path)
+
+
+def _wheelset_label(index: str) -> str:
+    if index == "w1":
+        return "leading wheelset"
+    return f"wheelset {index[1:]}" if index.startswith("w") else index
+
+
+def plot_root_locus(
+    eigen_result: EigenResult,
+    path: str | os.PathLike[str],
+    linear: LinearCriticalSpeed | None = None,
+) -> Path:
+    """Plot the root locus and the hunting-mode damping ratio versus speed.
+
+    Left: every eigenvalue of the linearised model in the upper half plane, real part
+    (1/s) against frequency ``Im/2pi`` (Hz), coloured by speed (km/h), with the hunting
+    mode drawn as a connected line. The view is zoomed on the hunting mode; the number of
+    eigenvalues outside the view is noted. Right: hunting-mode damping ratio (%) against
+    speed (km/h); it crosses zero at the linear critical speed.
+
+    Parameters
+    ----------
+    eigen_result : EigenResult
+        Output of :func:`railhunt.eigen_analysis`.
+    path : str or os.PathLike
+        Output file; the format follows the suffix.
+    linear : LinearCriticalSpeed, optional
+        Output of :func:`railhunt.linear_critical_speed`; marked on both panels when given.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+    """
+    speeds = np.asarray(eigen_result.speeds_kmh, dtype=float)
+    eig = np.asarray(eigen_result.eigenvalues)
+    hunt = np.asarray(eigen_result.hunting)
+    freq_h = hunt.imag / (2 * math.pi)
+    zeta = np.asarray(eigen_result.hunting_damping_ratio) * 100.0
+
+    fig = _new_figure(12.0, 4.8)
+    ax_r, ax_z = fig.subplots(1, 2, width_ratios=(1.4, 1.0))
+
+    s_all = np.repeat(speeds, eig.shape[1])
+    lam = eig.ravel()
+    upper = lam.imag >= -1e-9
+    sc = ax_r.scatter(
+        lam.real[upper],
+        lam.imag[upper] / (2 * math.pi),
+        c=s_all[upper],
+        s=9,
+        cmap="viridis",
+        vmin=speeds.min(),
+        vmax=max(speeds.max(), speeds.min() + 1),
+        linewidths=0,
+    )
+    ax_r.plot(hunt.real, freq_h, "-o", color="tab:red", ms=3.5, lw=1.4, label="hunting mode")
+    ax_r.axvline(0.0, color="k", lw=0.8)
+
+    x_lo = min(-8.0, 2.0 * float(np.min(hunt.real)))
+    x_hi = max(2.0, 1.5 * float(np.max(hunt.real)))
+    y_hi = max(10.0, 1.8 * float(np.max(freq_h)))
+    ax_r.set_xlim(x_lo, x_hi)
+    ax_r.set_ylim(-0.02 * y_hi, y_hi)
+    inside = (
+        (lam.real[upper] >= x_lo)
+        & (lam.real[upper] <= x_hi)
+        & (lam.imag[upper] / (2 * math.pi) <= y_hi)
+    )
+    hidden = int(np.count_nonzero(~inside))
+    if hidden:
+        ax_r.text(
+            0.01,
+            0.01,
+            f"{hidden} eigenvalues outside this view",
+            fontsize="x-small",
+            color="0.4",
+            transform=ax_r.transAxes,
+        )
+    if linear is not None and math.isfinite(linear.speed_kmh):
+        ax_r.plot(
+            0.0,
+            linear.frequency_hz,
+            "*",
+            color="k",
+            ms=12,
+            label=f"Hopf point {linear.speed_kmh:.0f} km/h, {linear.frequency_hz:.2f} Hz",
+        )
+    ax_r.set_xlabel("real part Re λ (1/s)   (> 0: unstable)")
+    ax_r.set_ylabel("frequency Im λ / 2π (Hz)")
+    ax_r.set_title(f"root locus, {speeds.min():.0f} to {speeds.max():.0f} km/h")
+    ax_r.legend(loc="upper left", fontsize="small")
+    ax_r.grid(True, alpha=0.3)
+    fig.colorbar(sc, ax=ax_r, label="speed (km/h)")
+
+    ax_z.plot(speeds, zeta, "-o", color="tab:red", ms=3.5)
+    ax_z.axhline(0.0, color="k", lw=0.8)
+    if linear is not None and math.isfinite(linear.speed_kmh):
+        ax_z.axvline(
+            linear.speed_kmh,
+            color="k",
+            ls="--",
+            lw=1.0,
+            label=f"linear critical speed {linear.speed_kmh:.0f} km/h",
+        )
+        ax_z.legend(loc="upper right", fontsize="small")
+    ax_z.set_xlabel("speed (km/h)")
+    ax_z.set_ylabel("hunting damping ratio (%)")
+    ax_z.set_title("hunting mode damping (< 0: hunting grows)")
+    ax_z.grid(True, alpha=0.3)
+    return _save(fig, path)

@@ -1,0 +1,198 @@
+"""Tests of the command line interface (railhunt.cli) through click's CliRunner."""
+
+import csv
+import json
+import math
+
+import pytest
+from click.testing import CliRunner
+
+from railhunt.cli import main
+
+COMMANDS = ["simulate", "eigen", "critical-speed", "parameters"]
+PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+
+
+def run(*args: str):
+    """Invoke ``railhunt *args`` with stdout and stderr kept apart."""
+    try:
+        runner = CliRunner(mix_stderr=False)
+    except TypeError:  # click >= 8.2 always separates them
+        runner = CliRunner()
+    return runner.invoke(main, list(args))
+
+
+def assert_input_error(result, *fragments: str) -> str:
+    """Exit status 2, one 'railhunt: error:' line on stderr naming ``fragments``."""
+    assert result.exit_code == 2, (result.exit_code, result.stdout, result.stderr)
+    assert isinstance(result.exception, SystemExit), result.exception
+    assert "Traceback" not in result.stderr + result.stdout
+    lines = [line for line in result.stderr.splitlines() if line.strip()]
+    assert len(lines) == 1, result.stderr
+    line = lines[0]
+    assert line.startswith("railhunt: error: "), line
+    for fragment in fragments:
+        assert fragment in line, (fragment, line)
+    return line
+
+
+def critical_json(*extra: str) -> dict:
+    result = run("critical-speed", "--tol", "5", "--json", *extra)
+    assert result.exit_code == 0, result.stderr
+    return json.loads(result.stdout)  # the whole of stdout is one JSON object
+
+
+@pytest.fixture(scope="module")
+def default_json() -> dict:
+    return critical_json()
+
+
+# --------------------------------------------------------------------------- help
+
+
+def test_main_help_teaches():
+    result = run("--help")
+    assert result.exit_code == 0
+    text = result.stdout
+    for word in ("hunting", "limit cycle", "km/h", "mm", "SI", *COMMANDS):
+        assert word in text, word
+
+
+@pytest.mark.parametrize("command", COMMANDS)
+def test_command_help(command):
+    result = run(command, "--help")
+    assert result.exit_code == 0, result.stderr
+    assert f"railhunt {command}" in result.stdout
+    assert "--vehicle" in result.stdout and "--set" in result.stdout
+
+
+# --------------------------------------------------------------------------- critical-speed
+
+
+def test_critical_speed_json(default_json):
+    data = default_json
+    for key in ("nonlinear_critical_speed_kmh", "linear_critical_speed_kmh"):
+        assert isinstance(data[key], float) and math.isfinite(data[key]), key
+    assert 100 < data["nonlinear_critical_speed_kmh"] < 600
+    assert data["nonlinear_critical_speed_kmh"] < data["linear_critical_speed_kmh"]
+    assert data["linear_hunting_frequency_hz"] > 0
+    assert data["bracketed"] is True
+    assert data["trials"], "trials are listed"
+    assert {t["verdict"] for t in data["trials"]} == {"stable", "hunting"}
+
+
+def test_softer_yaw_damper_lowers_linear_critical_speed(default_json):
+    soft = critical_json("--set", "C_d1=150e3")
+    assert soft["linear_critical_speed_kmh"] < default_json["linear_critical_speed_kmh"]
+    assert "C_d1" in soft["vehicle"]
+
+
+def test_critical_speed_table():
+    result = run("critical-speed", "--tol", "5")
+    assert result.exit_code == 0, result.stderr
+    assert "nonlinear critical speed" in result.stdout
+    assert "linear critical speed" in result.stdout
+    assert "hunting" in result.stdout and "stable" in result.stdout
+    assert result.stderr == ""  # no progress display off a terminal
+
+
+# --------------------------------------------------------------------------- simulate
+
+
+def test_simulate_writes_csv_and_png(tmp_path):
+    csv_file, png_file = tmp_path / "run.csv", tmp_path / "run.png"
+    result = run(
+        "simulate",
+        "--speed",
+        "300",
+        "--duration",
+        "2",
+        "--csv",
+        str(csv_file),
+        "--png",
+        str(png_file),
+    )
+    assert result.exit_code == 0, result.stderr
+    assert "status:" in result.stdout and "final amplitude" in result.stdout
+    with csv_file.open(newline="") as fh:
+        rows = list(csv.reader(fh))
+    assert any(name.startswith("y_w1") for name in rows[0])
+    assert len(rows) > 100
+    assert float(rows[-1][0]) == pytest.approx(2.0)
+    data = png_file.read_bytes()
+    assert data.startswith(PNG_SIGNATURE) and len(data) > 10_000
+
+
+def test_simulate_initial_displacement():
+    result = run("simulate", "--speed", "200", "--duration", "1", "--initial-displacement", "3")
+    assert result.exit_code == 0, result.stderr
+    assert "displaced by 3 mm" in result.stdout
+
+
+# --------------------------------------------------------------------------- eigen
+
+
+def test_eigen_table_csv_png_and_vehicle_file(tmp_path):
+    vehicle = tmp_path / "soft.toml"
+    vehicle.write_text(
+        '[vehicle]\nname = "soft"\nbase = "paper2019"\n\n[parameters]\nC_d1 = 150000.0\n'
+    )
+    csv_file, png_file = tmp_path / "eig.csv", tmp_path / "eig.png"
+    result = run(
+        "eigen",
+        "--from",
+        "100",
+        "--to",
+        "300",
+        "--step",
+        "50",
+        "--vehicle",
+        str(vehicle),
+        "--csv",
+        str(csv_file),
+        "--png",
+        str(png_file),
+    )
+    assert result.exit_code == 0, result.stderr
+    assert "soft" in result.stdout and "linear critical speed" in result.stdout
+    lines = csv_file.read_text().splitlines()
+    assert lines[0].startswith("speed_kmh,hunting_frequency_hz")
+    assert len(lines) == 1 + 5
+    assert png_file.read_bytes().startswith(PNG_SIGNATURE)
+
+
+# --------------------------------------------------------------------------- input errors
+
+
+@pytest.mark.parametrize(
+    ("args", "fragments"),
+    [
+        (["critical-speed", "--set", "C_d1=-5"], ["C_d1", "-5"]),
+        (["critical-speed", "--set", "nosuch=1"], ["nosuch"]),
+        (["critical-speed", "--set", "C_d1"], ["C_d1", "NAME=VALUE"]),
+        (["critical-speed", "--set", "C_d1=abc"], ["C_d1", "abc"]),
+        (["critical-speed", "--set", "v_u=3"], ["v_u", "derived"]),
+        (["critical-speed", "--set", "l1=30"], ["l1", "30"]),
+        (["simulate", "--speed", "-3"], ["--speed", "-3"]),
+        (["simulate", "--speed", "nan"], ["--speed", "nan"]),
+        (["simulate"], ["--speed"]),
+        (["simulate", "--speed", "300", "--vehicle", "no/such/vehicle.toml"], ["vehicle.toml"]),
+        (["simulate", "--speed", "300", "--amplitude", "80"], ["--amplitude", "80"]),
+        (["simulate", "--speed", "300", "--method", "euler"], ["--method", "euler"]),
+        (["simulate", "--speed", "300", "--csv", "no/such/dir/x.csv"], ["--csv", "no/such/dir"]),
+        (["eigen", "--from", "300", "--to", "100"], ["--to", "--from"]),
+        (["critical-speed", "--tol", "20"], ["--tol", "20"]),
+        (["no-such-command"], ["no-such-command"]),
+    ],
+)
+def test_bad_input_is_one_line_exit_2(args, fragments):
+    assert_input_error(run(*args), *fragments)
+
+
+def test_bad_vehicle_file(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[parameters]\nC_d1 = -1.0\n[vehicle]\nbase = 'paper2019'\n")
+    assert_input_error(run("eigen", "--vehicle", str(bad)), "bad.toml", "C_d1", "-1")
+    broken = tmp_path / "broken.toml"
+    broken.write_text("this is = = not toml\n")
+    assert_input_error(run("parameters", "--vehicle", str(broken)), "broken.toml")
