@@ -194,7 +194,8 @@ def rhs(
         rate = 0.0
         for k in range(nq):
             rate += bd[d, k] * x[nq + k]
-        out[2 * nq + d] = dpar[d, 0] * (rate - damper_velocity(f, dpar[d, 1], dpar[d, 2], dpar[d, 3]))
+        v_damp = damper_velocity(f, dpar[d, 1], dpar[d, 2], dpar[d, 3])
+        out[2 * nq + d] = dpar[d, 0] * (rate - v_damp)
         for i in range(nq):
             out[nq + i] += dd[i, d] * f
     inv_mw = wr[_INV_MW]

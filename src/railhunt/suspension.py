@@ -150,7 +150,8 @@ def suspension_elements(vehicle: Vehicle) -> list[Element]:
                         v.C_px),
                 Element(f"primary lateral spring, {tag}", "spring", "y", bogie, pb, ws, pw, v.K_py),
                 Element(f"primary lateral damper, {tag}", "damper", "y", bogie, pb, ws, pw, v.C_py),
-                Element(f"primary vertical spring, {tag}", "spring", "z", bogie, pb, ws, pw, v.K_pz),
+                Element(f"primary vertical spring, {tag}", "spring", "z", bogie, pb, ws, pw,
+                        v.K_pz),
                 Element(f"primary vertical damper, {tag}", "damper", "z", bogie, pb, ws, pw,
                         v.C_pz),
             ]  # fmt: skip
