@@ -194,3 +194,14 @@ def test_gravitational_stiffness_restores_and_creep_yaws_back():
     weak = Model(PAPER.replace(mu=1e-9))
     fy_grav, _ = wheelset_forces(0.002, 0.0, 0.0, 0.0, 0.0, 80.0, weak.wr)
     assert fy_grav < 0
+
+
+def test_hunting_mode_branch_is_continuous():
+    """The hunting branch from 20 to 500 km/h is one mode: its frequency rises monotonically
+    with speed (kinematic hunting, f ~ v at low speed) and its damping ratio never jumps by
+    more than 0.05 between 20 km/h steps."""
+    from railhunt.analysis.linear import eigen_analysis
+
+    result = eigen_analysis(PAPER, np.arange(20.0, 520.0, 20.0))
+    assert np.all(np.diff(result.hunting_frequency_hz) > 0)
+    assert np.max(np.abs(np.diff(result.hunting_damping_ratio))) < 0.05

@@ -94,12 +94,22 @@ def hunting_mode_index(w: np.ndarray, vecs: np.ndarray, a: float) -> int:
             continue
         if best_any < 0 or w[k].real > w[best_any].real:
             best_any = k
-        q = vecs[:17, k]
-        lateral = np.abs(q[[0, 3, 6]])
-        wheel = np.concatenate([np.abs(q[_WHEELSET_Y]), a * np.abs(q[_WHEELSET_PSI])])
-        if wheel.max() >= lateral.max() and (best < 0 or w[k].real > w[best].real):
+        if _is_wheelset_mode(vecs[:17, k], a) and (best < 0 or w[k].real > w[best].real):
             best = k
     return best if best >= 0 else best_any
+
+
+def _is_wheelset_mode(q: np.ndarray, a: float) -> bool:
+    """True when the largest lateral amplitude of mode shape ``q`` (17 DOF) is a wheelset's."""
+    lateral = np.abs(q[[0, 3, 6]])
+    wheel = np.concatenate([np.abs(q[_WHEELSET_Y]), a * np.abs(q[_WHEELSET_PSI])])
+    return bool(wheel.max() >= lateral.max())
+
+
+def _mac(p: np.ndarray, q: np.ndarray) -> float:
+    """Modal assurance criterion of two complex mode shapes (0..1)."""
+    den = np.vdot(p, p).real * np.vdot(q, q).real
+    return float(abs(np.vdot(p, q)) ** 2 / den) if den > 0 else 0.0
 
 
 def eigen_analysis(
@@ -107,12 +117,18 @@ def eigen_analysis(
 ) -> EigenResult:
     """Eigenvalues of the linearised model and the hunting mode at each speed.
 
+    The hunting mode is identified at the speed where it is least damped (the highest of
+    the per-speed picks of :func:`hunting_mode_index`) and followed from there to the other
+    speeds by continuity of its mode shape (largest modal assurance criterion among the
+    oscillatory modes), so that at low speed, where several wheelset modes have similar
+    damping, the branch does not jump to another mode.
+
     Parameters
     ----------
     vehicle : Vehicle
         Vehicle description.
     speeds_kmh : array_like
-        Speeds (km/h), each > 0.
+        Speeds (km/h), each > 0, in increasing order for mode tracking.
     creep_law : str
         See :class:`railhunt.model.Model`.
     """
@@ -121,11 +137,33 @@ def eigen_analysis(
         raise ValueError("speeds_kmh must be a non-empty 1-D list of finite speeds > 0 km/h")
     model = Model(vehicle, creep_law=creep_law)
     eig = np.empty((speeds.size, N_STATE), dtype=complex)
-    hunt = np.empty(speeds.size, dtype=complex)
+    shapes = []
+    first_pick = np.empty(speeds.size, dtype=int)
     for i, s in enumerate(speeds):
         w, vecs = eigenvalues(model, s / 3.6)
         eig[i] = w
-        hunt[i] = w[hunting_mode_index(w, vecs, vehicle.a)]
+        shapes.append(vecs[:17])
+        first_pick[i] = hunting_mode_index(w, vecs, vehicle.a)
+    # Seed: the speed at which the per-speed pick is least damped (ratio).
+    picked = eig[np.arange(speeds.size), first_pick]
+    zeta = -picked.real / np.maximum(np.abs(picked), 1e-12)
+    seed = int(np.argmin(zeta))
+    index = first_pick.copy()
+    for direction in (-1, 1):
+        i = seed
+        while 0 <= i + direction < speeds.size:
+            prev = shapes[i][:, index[i]]
+            j = i + direction
+            best, best_mac = index[j], -1.0
+            for k in range(N_STATE):
+                if eig[j, k].imag <= 1e-6:
+                    continue
+                m = _mac(prev, shapes[j][:, k])
+                if m > best_mac:
+                    best, best_mac = k, m
+            index[j] = best
+            i = j
+    hunt = eig[np.arange(speeds.size), index]
     return EigenResult(speeds, eig, hunt)
 
 
