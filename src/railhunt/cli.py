@@ -188,16 +188,66 @@ def _check_outputs(**files: Path | None) -> None:
             raise CliError(f"--{option} {path}: folder {str(path.parent)!r} does not exist")
 
 
+def _kmh_option(
+    flag: str, dest: str, default: float, high: float, help: str
+) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+    """A speed option in km/h, finite and in ``(0, high]``."""
+    return click.option(
+        flag,
+        dest,
+        type=float,
+        default=default,
+        show_default=True,
+        metavar="KMH",
+        callback=_number_range("km/h", 0.0, high),
+        help=help,
+    )
+
+
+def _defect_options(amplitude_help: str) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+    """Add ``--amplitude`` (mm) and ``--wavelength`` (m) of the single track defect."""
+
+    def decorate(func: Callable[..., Any]) -> Callable[..., Any]:
+        func = click.option(
+            "--wavelength",
+            type=float,
+            default=20.0,
+            show_default=True,
+            metavar="M",
+            callback=_number_range("m", 0.5, 1000.0, low_open=False),
+            help="Length of the single track defect along the track (m).",
+        )(func)
+        return click.option(
+            "--amplitude",
+            type=float,
+            default=8.0,
+            show_default=True,
+            metavar="MM",
+            callback=_number_range("mm", -50.0, 50.0, low_open=False),
+            help=amplitude_help,
+        )(func)
+
+    return decorate
+
+
+def _single_defect(amplitude_mm: float, wavelength: float) -> Any:
+    """The :class:`railhunt.track.SingleDefect` the defect options describe (mm to m)."""
+    from railhunt.track import SingleDefect
+
+    with _user_input():
+        return SingleDefect(amplitude=amplitude_mm * 1e-3, wavelength=wavelength)
+
+
 def _method_options(func: Callable[..., Any]) -> Callable[..., Any]:
     """Add ``--method`` and ``--dt`` to a command."""
     func = click.option(
         "--dt",
         type=float,
-        default=5e-4,
-        show_default=True,
+        default=None,
         metavar="S",
-        callback=_number_range("s", 0.0, 0.01),
-        help="Time step of the fixed-step rk4 integrator (s).",
+        callback=_number_range("s", 0.0, 0.01, optional=True),
+        help="Time step of the fixed-step rk4 integrator (s). Default: chosen from the "
+        "model's fastest dynamics (1 ms for the paper's vehicle).",
     )(func)
     func = click.option(
         "--method",
@@ -334,24 +384,7 @@ def main() -> None:
     callback=_number_range("s", 0.0, 1e5),
     help="Simulated time (s).",
 )
-@click.option(
-    "--amplitude",
-    type=float,
-    default=8.0,
-    show_default=True,
-    metavar="MM",
-    callback=_number_range("mm", -50.0, 50.0, low_open=False),
-    help="Peak lateral displacement of the single track defect (mm), within ±50 mm.",
-)
-@click.option(
-    "--wavelength",
-    type=float,
-    default=20.0,
-    show_default=True,
-    metavar="M",
-    callback=_number_range("m", 0.5, 1000.0, low_open=False),
-    help="Length of the single track defect along the track (m).",
-)
+@_defect_options("Peak lateral displacement of the single track defect (mm), within ±50 mm.")
 @click.option(
     "--initial-displacement",
     type=float,
@@ -393,7 +426,7 @@ def simulate(
     wavelength: float,
     initial_displacement: float | None,
     method: str,
-    dt: float,
+    dt: float | None,
     output_dt: float | None,
     csv_file: Path | None,
     png_file: Path | None,
@@ -434,17 +467,15 @@ def simulate(
     import numpy as np
 
     from railhunt.simulation import simulate as run_simulation
-    from railhunt.track import InitialDisplacement, SingleDefect
+    from railhunt.track import InitialDisplacement
 
-    with _user_input():
-        if initial_displacement is not None:
+    if initial_displacement is not None:
+        with _user_input():
             excitation: Any = InitialDisplacement(amplitude=initial_displacement * 1e-3)
-            described = f"all wheelsets displaced by {initial_displacement:g} mm"
-        else:
-            excitation = SingleDefect(amplitude=amplitude * 1e-3, wavelength=wavelength)
-            described = (
-                f"{amplitude:g} mm x {wavelength:g} m lateral bump at {excitation.start:g} m"
-            )
+        described = f"all wheelsets displaced by {initial_displacement:g} mm"
+    else:
+        excitation = _single_defect(amplitude, wavelength)
+        described = f"{amplitude:g} mm x {wavelength:g} m lateral bump at {excitation.start:g} m"
     with _spinner(f"simulating {duration:g} s at {speed:g} km/h ..."), _user_input():
         result = run_simulation(
             vehicle,
@@ -484,36 +515,9 @@ def simulate(
 
 
 @main.command(short_help="Hunting frequency and damping vs speed (linearised model).")
-@click.option(
-    "--from",
-    "from_kmh",
-    type=float,
-    default=50.0,
-    show_default=True,
-    metavar="KMH",
-    callback=_number_range("km/h", 0.0, 1000.0),
-    help="Lowest speed (km/h).",
-)
-@click.option(
-    "--to",
-    "to_kmh",
-    type=float,
-    default=500.0,
-    show_default=True,
-    metavar="KMH",
-    callback=_number_range("km/h", 0.0, 1000.0),
-    help="Highest speed (km/h).",
-)
-@click.option(
-    "--step",
-    "step_kmh",
-    type=float,
-    default=10.0,
-    show_default=True,
-    metavar="KMH",
-    callback=_number_range("km/h", 0.0, 1000.0),
-    help="Speed step (km/h).",
-)
+@_kmh_option("--from", "from_kmh", 50.0, 1000.0, "Lowest speed (km/h).")
+@_kmh_option("--to", "to_kmh", 500.0, 1000.0, "Highest speed (km/h).")
+@_kmh_option("--step", "step_kmh", 10.0, 1000.0, "Speed step (km/h).")
 @click.option(
     "--png",
     "png_file",
@@ -620,55 +624,15 @@ def _linear_line(linear: Any) -> str:
 
 
 @main.command("critical-speed", short_help="Nonlinear and linear critical speeds (km/h).")
-@click.option(
-    "--amplitude",
-    type=float,
-    default=8.0,
-    show_default=True,
-    metavar="MM",
-    callback=_number_range("mm", -50.0, 50.0, low_open=False),
-    help="Peak lateral displacement of the track defect run over at each trial speed (mm), "
-    "within ±50 mm.",
+@_defect_options(
+    "Peak lateral displacement of the track defect run over at each trial speed (mm), "
+    "within ±50 mm."
 )
-@click.option(
-    "--wavelength",
-    type=float,
-    default=20.0,
-    show_default=True,
-    metavar="M",
-    callback=_number_range("m", 0.5, 1000.0, low_open=False),
-    help="Length of the track defect (m).",
-)
-@click.option(
-    "--start",
-    "start_kmh",
-    type=float,
-    default=300.0,
-    show_default=True,
-    metavar="KMH",
-    callback=_number_range("km/h", 0.0, 800.0),
-    help="First trial speed (km/h).",
-)
-@click.option(
-    "--step",
-    "step_kmh",
-    type=float,
-    default=10.0,
-    show_default=True,
-    metavar="KMH",
-    callback=_number_range("km/h", 0.0, 800.0),
-    help="Step while bracketing the critical speed (km/h).",
-)
-@click.option(
-    "--tol",
-    "tol_kmh",
-    type=float,
-    default=1.0,
-    show_default=True,
-    metavar="KMH",
-    callback=_number_range("km/h", 0.0, 800.0),
-    help="Resolution of the bisection (km/h); at most --step.",
-)
+@_kmh_option("--start", "start_kmh", 300.0, 800.0, "First trial speed (km/h).")
+@_kmh_option("--step", "step_kmh", 10.0, 800.0,
+             "Step while bracketing the critical speed (km/h).")  # fmt: skip
+@_kmh_option("--tol", "tol_kmh", 1.0, 800.0,
+             "Resolution of the bisection (km/h); at most --step.")  # fmt: skip
 @_method_options
 @click.option(
     "--json",
@@ -684,7 +648,7 @@ def critical_speed(
     step_kmh: float,
     tol_kmh: float,
     method: str,
-    dt: float,
+    dt: float | None,
     as_json: bool,
     vehicle_file: Path | None,
     sets: dict[str, float],
@@ -712,10 +676,8 @@ def critical_speed(
 
     from railhunt.analysis.critical import critical_speed as run_critical_speed
     from railhunt.analysis.linear import linear_critical_speed
-    from railhunt.track import SingleDefect
 
-    with _user_input():
-        excitation = SingleDefect(amplitude=amplitude * 1e-3, wavelength=wavelength)
+    excitation = _single_defect(amplitude, wavelength)
 
     with _trial_progress() as on_trial, _user_input():
         result = run_critical_speed(
