@@ -1,4 +1,4 @@
-"""Command line interface: ``railhunt simulate | eigen | critical-speed | parameters``.
+"""Command line interface: ``railhunt simulate | eigen | critical-speed | parameters | ...``.
 
 The interface converts units at its edge (defect amplitudes in mm, speeds in km/h) and
 calls the Python API in SI units. Every input error ends the program with one line on
@@ -838,6 +838,12 @@ def parameters(vehicle_file: Path | None, sets: dict[str, float]) -> None:
         table.add_row(name, f"{value:.6g}", unit, meaning, style=style)
     _stdout_console().print(table)
 
+
+# --------------------------------------------------------------------------- more commands
+# Each topic's commands live in a module of this package that decorates ``main``; importing
+# them here registers the commands. Keep this block last: the modules import from above.
+
+from railhunt.cli import _registry  # noqa: E402, F401
 
 if __name__ == "__main__":  # pragma: no cover
     main()
