@@ -10,6 +10,10 @@ Main entry points (imported lazily, so ``import railhunt`` stays fast)::
     simulate                         time integration with named channels
     linear_critical_speed            Hopf point of the centred equilibrium
     critical_speed                   nonlinear critical speed by bisection (the paper's)
+    critical_speed_ramp              nonlinear critical speed by a slow speed ramp (type a)
+    bifurcation_diagram              limit-cycle branches by path following, Hopf type
+    periodic_orbit                   one limit cycle by shooting, Floquet multipliers
+    hunting_frequency                hunting frequency (eigenvalue or limit cycle)
     eigen_analysis                   eigenvalues and hunting mode versus speed
     SingleDefect, InitialDisplacement  excitations
 """
@@ -34,6 +38,10 @@ _EXPORTS = {
     "linear_critical_speed": "railhunt.analysis.linear",
     "eigen_analysis": "railhunt.analysis.linear",
     "critical_speed": "railhunt.analysis.critical",
+    "critical_speed_ramp": "railhunt.analysis.ramp",
+    "bifurcation_diagram": "railhunt.analysis.continuation",
+    "periodic_orbit": "railhunt.analysis.periodic",
+    "hunting_frequency": "railhunt.analysis.frequency",
 }
 
 __all__ = sorted(_EXPORTS)

@@ -20,10 +20,17 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 if TYPE_CHECKING:
+    from railhunt.analysis.continuation import BifurcationDiagram
     from railhunt.analysis.linear import EigenResult, LinearCriticalSpeed
     from railhunt.simulation import SimulationResult
 
-__all__ = ["plot_root_locus", "plot_time_history"]
+__all__ = [
+    "plot_bifurcation",
+    "plot_damper_velocity",
+    "plot_hunting_frequency",
+    "plot_root_locus",
+    "plot_time_history",
+]
 
 #: Start of the phase-plane window (s), as in the paper's Fig. 6 (after the transient).
 PHASE_FROM = 3.0
@@ -221,4 +228,125 @@ def plot_root_locus(
     ax_z.set_ylabel("hunting damping ratio (%)")
     ax_z.set_title("hunting mode damping (< 0: hunting grows)")
     ax_z.grid(True, alpha=0.3)
+    return _save(fig, path)
+
+
+def plot_bifurcation(
+    diagram: BifurcationDiagram,
+    path: str | os.PathLike[str],
+    point_p_amplitude: float | None = 3e-3,
+) -> Path:
+    """Bifurcation diagram like the paper's Fig. 7a.
+
+    Amplitude of the leading wheelset (mm) against speed (km/h): stable limit cycles
+    solid, unstable dashed, the centred equilibrium along the axis (stable solid up to
+    the Hopf point, dashed above), the Hopf point and the folds marked, and the paper's
+    point P where a disturbance of ``point_p_amplitude`` (m) meets an unstable branch.
+    """
+    fig = _new_figure(7.5, 4.8)
+    ax = fig.add_subplot(1, 1, 1)
+    lo, hi = diagram.speed_range_kmh
+    hopf = diagram.hopf_speed_kmh
+    ax.plot([lo, min(hopf, hi)], [0, 0], "k-", lw=2, label="equilibrium, stable")
+    if hopf < hi:
+        ax.plot([hopf, hi], [0, 0], "k--", lw=1.2, label="equilibrium, unstable")
+    colours = ["C0", "C2", "C4", "C5"]
+    for n, branch in enumerate(diagram.branches):
+        c = colours[n % len(colours)]
+        name = "Hopf branch" if branch.origin == "hopf" else f"branch {n + 1}"
+        for first, last, stable in branch.segments():
+            sl = slice(first, last + 1)
+            ax.plot(branch.speed_kmh[sl], branch.amplitude[sl] * 1e3, "-" if stable else "--",
+                    color=c, lw=2 if stable else 1.2)  # fmt: skip
+        ax.plot([], [], "-", color=c, lw=2, label=f"{name}: stable (solid) / unstable (dashed)")
+    ax.plot([hopf], [0], "o", color="C3", ms=8, zorder=5,
+            label=f"Hopf point A, V_lim = {hopf:.1f} km/h")  # fmt: skip
+    for k, fold in enumerate(diagram.folds):
+        ax.plot([fold.speed_kmh], [fold.amplitude * 1e3], "s", color="C1", ms=6, zorder=5,
+                label="folds" if k == 0 else None)  # fmt: skip
+    v_nl = diagram.fold_speed_kmh
+    ax.axvline(v_nl, color="C1", lw=0.8, ls=":")
+    ax.text(v_nl, 0.02, f" V_nl = {v_nl:.1f} km/h", transform=ax.get_xaxis_transform(),
+            color="C1", va="bottom")  # fmt: skip
+    if point_p_amplitude is not None:
+        vp = diagram.point_p_kmh(point_p_amplitude)
+        ax.axhline(point_p_amplitude * 1e3, color="0.5", lw=0.6, ls=":")
+        if math.isfinite(vp):
+            ax.plot([vp], [point_p_amplitude * 1e3], "D", color="C3", ms=7, zorder=6,
+                    label=f"P: {point_p_amplitude * 1e3:g} mm meets unstable branch, "
+                    f"{vp:.1f} km/h")  # fmt: skip
+        else:
+            ax.text(lo, point_p_amplitude * 1e3, f" {point_p_amplitude * 1e3:g} mm: no unstable "
+                    "branch crosses it", va="bottom", fontsize=8, color="0.4")  # fmt: skip
+    ax.set_xlim(lo, hi)
+    ax.set_ylim(bottom=-0.3)
+    ax.set_xlabel("speed (km/h)")
+    ax.set_ylabel("amplitude of leading wheelset y_w1 (mm)")
+    ax.set_title(f"Bifurcation diagram ({diagram.hopf_type} Hopf bifurcation)")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7, loc="upper left")
+    return _save(fig, path)
+
+
+def plot_hunting_frequency(
+    speeds_kmh: np.ndarray,
+    frequency_hz: np.ndarray,
+    sources: list[str],
+    path: str | os.PathLike[str],
+    initial_amplitude: float = 3e-3,
+) -> Path:
+    """Hunting frequency versus speed like the paper's Fig. 7b, the jump drawn dashed.
+
+    Frequencies from the hunting eigenvalue (disturbance decays) as circles joined by a
+    line, from the limit cycle as squares; the jump between them (points Q1, Q2) dashed.
+    """
+    speeds = np.asarray(speeds_kmh, dtype=float)
+    freq = np.asarray(frequency_hz, dtype=float)
+    fig = _new_figure(7.0, 4.2)
+    ax = fig.add_subplot(1, 1, 1)
+    for source, marker, label in (("eigenvalue", "o-", "from the hunting eigenvalue"),
+                                  ("limit-cycle", "s-", "from the limit cycle")):  # fmt: skip
+        mask = np.array([s == source for s in sources])
+        if mask.any():
+            ax.plot(speeds[mask], freq[mask], marker, ms=4, label=label)
+    for i in range(1, len(sources)):
+        if sources[i] != sources[i - 1]:
+            ax.plot(speeds[i - 1:i + 1], freq[i - 1:i + 1], "k--", lw=1)
+            ax.annotate("Q1", (speeds[i - 1], freq[i - 1]), xytext=(-18, 4),
+                        textcoords="offset points")  # fmt: skip
+            ax.annotate("Q2", (speeds[i], freq[i]), xytext=(4, 4), textcoords="offset points")
+    ax.set_xlabel("speed (km/h)")
+    ax.set_ylabel("hunting frequency of leading wheelset (Hz)")
+    ax.set_title(f"Hunting frequency, initial wheelset displacement {initial_amplitude * 1e3:g} mm")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    return _save(fig, path)
+
+
+def plot_damper_velocity(
+    t: np.ndarray,
+    y: np.ndarray,
+    damper_velocity: np.ndarray,
+    blowoff_velocity: float,
+    path: str | os.PathLike[str],
+    title: str = "",
+) -> Path:
+    """Time histories like the paper's Fig. 8: leading wheelset displacement (mm) and the
+    front yaw damper's velocity (m/s) against the blow-off velocity (red lines)."""
+    fig = _new_figure(7.0, 5.0)
+    ax1 = fig.add_subplot(2, 1, 1)
+    ax1.plot(t, np.asarray(y) * 1e3, lw=0.8)
+    ax1.set_ylabel("y_w1 (mm)")
+    ax1.grid(True, alpha=0.3)
+    if title:
+        ax1.set_title(title)
+    ax2 = fig.add_subplot(2, 1, 2, sharex=ax1)
+    ax2.plot(t, np.asarray(damper_velocity)[:, 0], lw=0.8, label="front left yaw damper v_d")
+    for sign in (1, -1):
+        ax2.axhline(sign * blowoff_velocity, color="r", lw=1,
+                    label="blow-off velocity v_u" if sign > 0 else None)  # fmt: skip
+    ax2.set_xlabel("time (s)")
+    ax2.set_ylabel("damper velocity (m/s)")
+    ax2.grid(True, alpha=0.3)
+    ax2.legend(fontsize=8, loc="upper right")
     return _save(fig, path)

@@ -1,0 +1,496 @@
+"""Limit cycles of the autonomous vehicle model by shooting, and their Floquet multipliers.
+
+A periodic orbit ``x(t + T) = x(t)`` of the model on ideal track is found by Newton's
+method on the shooting residual, with the period ``T`` as an unknown and a phase condition
+that fixes the orbit's time origin at an extremum of the leading wheelset's lateral
+displacement (``dy_w1/dt = 0`` at ``t = 0``).
+
+Symmetry. On ideal track the vehicle is left/right symmetric: the right-hand side is odd,
+``f(-x) = -f(x)`` (the wheel profiles are mirror images, the damper law is odd). A hunting
+orbit is then invariant under that symmetry with a half-period shift,
+``x(t + T/2) = -x(t)``, and it suffices to shoot over half a period with the residual
+``phi_{T/2}(x0) + x0``. The monodromy matrix is ``(-M_half)**2`` with
+``M_half = d phi_{T/2} / d x0``; the Floquet multipliers are the squares of the
+eigenvalues of ``-M_half``. ``symmetric=False`` shoots over the whole period instead (for
+asymmetric vehicles or orbits).
+
+Non-smoothness. The yaw damper's two-stage law has a kink at ``|F_d| = F_u`` (blow-off);
+the vector field is continuous but its derivative jumps there. A fixed-step Runge-Kutta
+step across the kink is only first-order accurate and makes the discrete flow map
+non-smooth in ``x0``, which slows or stalls Newton. The integrator here (:func:`flow`)
+locates each crossing of ``|F_d| = F_u`` inside a step (regula falsi on the step
+fraction, to ``1e-9 F_u``), ends the step there and restarts on the other side, so every
+Runge-Kutta step sees a smooth vector field. The discrete flow map is then smooth in
+``x0``, ``T`` and the speed, Newton converges quadratically, and the answer converges at
+fourth order in the step (tests). Other kinks (contact angle limited to the flange angle,
+the heuristic saturation at ``beta = 3``, which is C1) are not located.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+from railhunt.model import N_STATE, WHEELSET_Y, Y_W1, Model, rhs
+from railhunt.simulation import auto_step
+
+#: Index of dy_w1/dt in the state vector: the phase condition fixes it to zero.
+PHASE_INDEX = 17 + Y_W1
+_N_Q = 17
+_F0 = 34
+
+#: Natural scales of the states (m or rad, m/s or rad/s, N) for Newton and finite differences.
+STATE_SCALE = np.concatenate([np.full(17, 1e-3), np.full(17, 1e-2), np.full(4, 1e3)])
+#: Relative finite-difference step (times STATE_SCALE).
+FD_STEP = 1e-5
+
+
+@njit(cache=True)
+def _rk4_step(t, x, h, v, lin, bd, dd, dpar, wr, trk, trs, k1, k2, k3, k4, tmp, out):
+    n = x.shape[0]
+    rhs(t, x, v, lin, bd, dd, dpar, wr, trk, trs, k1)
+    for i in range(n):
+        tmp[i] = x[i] + 0.5 * h * k1[i]
+    rhs(t + 0.5 * h, tmp, v, lin, bd, dd, dpar, wr, trk, trs, k2)
+    for i in range(n):
+        tmp[i] = x[i] + 0.5 * h * k2[i]
+    rhs(t + 0.5 * h, tmp, v, lin, bd, dd, dpar, wr, trk, trs, k3)
+    for i in range(n):
+        tmp[i] = x[i] + h * k3[i]
+    rhs(t + h, tmp, v, lin, bd, dd, dpar, wr, trk, trs, k4)
+    for i in range(n):
+        out[i] = x[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+
+
+@njit(cache=True)
+def flow(x0, horizon, n_steps, locate, v, lin, bd, dd, dpar, wr, trk, trs, samples):
+    """State after ``horizon`` seconds: RK4 on a uniform grid, damper switchings located.
+
+    Parameters
+    ----------
+    x0 : numpy.ndarray, shape (38,)
+        Initial state.
+    horizon : float
+        Integration time (s).
+    n_steps : int
+        Number of grid steps (step ``horizon / n_steps``).
+    locate : bool
+        End a step where a yaw damper force crosses ``|F| = F_u`` (see module docstring).
+    v, lin, bd, dd, dpar, wr, trk, trs
+        Model arguments (:meth:`railhunt.model.Model.args`).
+    samples : numpy.ndarray, shape (n_steps + 1, k)
+        Receives states ``0..k-1`` at every grid point (``k = 0`` for none).
+
+    Returns
+    -------
+    x : numpy.ndarray
+        State at ``t = horizon``.
+    n_switch : int
+        Number of located switchings.
+    """
+    n = x0.shape[0]
+    ns = samples.shape[1]
+    x = x0.copy()
+    xn = np.empty(n)
+    xt = np.empty(n)
+    k1 = np.empty(n)
+    k2 = np.empty(n)
+    k3 = np.empty(n)
+    k4 = np.empty(n)
+    tmp = np.empty(n)
+    h = horizon / n_steps
+    n_switch = 0
+    for j in range(ns):
+        samples[0, j] = x[j]
+    for step in range(n_steps):
+        t = step * h
+        remaining = h
+        for _sub in range(16):
+            _rk4_step(t, x, remaining, v, lin, bd, dd, dpar, wr, trk, trs,
+                      k1, k2, k3, k4, tmp, xn)  # fmt: skip
+            crossing = -1
+            theta = 1.0
+            if locate:
+                for d in range(4):
+                    fu = dpar[d, 3]
+                    s0 = abs(x[_F0 + d]) - fu
+                    s1 = abs(xn[_F0 + d]) - fu
+                    if abs(s0) > 1e-9 * fu and s0 * s1 < 0.0:
+                        th = s0 / (s0 - s1)
+                        if th < theta:
+                            theta = th
+                            crossing = d
+            if crossing < 0:
+                for i in range(n):
+                    x[i] = xn[i]
+                break
+            # Regula falsi (Illinois) for the step fraction where |F| = F_u.
+            fu = dpar[crossing, 3]
+            lo, slo = 0.0, abs(x[_F0 + crossing]) - fu
+            hi, shi = 1.0, abs(xn[_F0 + crossing]) - fu
+            th = theta
+            side = 0
+            for _it in range(30):
+                _rk4_step(t, x, th * remaining, v, lin, bd, dd, dpar, wr, trk, trs,
+                          k1, k2, k3, k4, tmp, xt)  # fmt: skip
+                st = abs(xt[_F0 + crossing]) - fu
+                if abs(st) <= 1e-9 * fu:
+                    break
+                if st * slo < 0.0:
+                    hi, shi = th, st
+                    if side == -1:
+                        slo *= 0.5
+                    side = -1
+                else:
+                    lo, slo = th, st
+                    if side == 1:
+                        shi *= 0.5
+                    side = 1
+                th = lo + (hi - lo) * slo / (slo - shi)
+            for i in range(n):
+                x[i] = xt[i]
+            n_switch += 1
+            t += th * remaining
+            remaining *= 1.0 - th
+            if remaining <= 1e-12 * h:
+                break
+        for j in range(ns):
+            samples[step + 1, j] = x[j]
+    return x, n_switch
+
+
+@dataclass
+class PeriodicOrbit:
+    """A limit cycle of the vehicle on ideal track.
+
+    Attributes
+    ----------
+    speed : float
+        Forward speed (m/s).
+    state : numpy.ndarray, shape (38,)
+        State at the phase origin (an extremum of the leading wheelset's displacement).
+    period : float
+        Period (s).
+    amplitude : float
+        Largest |lateral displacement| of the leading wheelset over the orbit (m).
+    multipliers : numpy.ndarray
+        Floquet multipliers (complex), sorted by decreasing modulus, the trivial one
+        (``~1``, along the orbit) included.
+    stable : bool
+        True when every non-trivial multiplier lies inside the unit circle.
+    residual : float
+        Scaled shooting residual at convergence (dimensionless).
+    iterations : int
+        Newton iterations used.
+    symmetric : bool
+        True when found with the half-period symmetric residual.
+    wheelset_amplitudes : numpy.ndarray, shape (4,)
+        Largest |lateral displacement| of each wheelset (m); the first is ``amplitude``.
+        A cycle in which the rear bogie hunts has a small ``amplitude`` and a large
+        ``wheelset_amplitudes[2:]``.
+    """
+
+    speed: float
+    state: np.ndarray
+    period: float
+    amplitude: float
+    multipliers: np.ndarray
+    stable: bool
+    residual: float
+    iterations: int
+    symmetric: bool
+    wheelset_amplitudes: np.ndarray
+
+    @property
+    def speed_kmh(self) -> float:
+        """Forward speed (km/h)."""
+        return self.speed * 3.6
+
+    @property
+    def frequency_hz(self) -> float:
+        """Orbit frequency ``1 / period`` (Hz)."""
+        return 1.0 / self.period
+
+    @property
+    def max_multiplier(self) -> float:
+        """Largest modulus among the non-trivial Floquet multipliers."""
+        return float(np.max(np.abs(_nontrivial(self.multipliers))))
+
+
+def _nontrivial(mult: np.ndarray) -> np.ndarray:
+    k = int(np.argmin(np.abs(mult - 1.0)))
+    return np.delete(mult, k)
+
+
+class Shooting:
+    """The shooting problem of one vehicle model: residual, Jacobian, orbit properties.
+
+    The unknowns are packed, scaled by :data:`STATE_SCALE`, as
+    ``u = [x0 without dy_w1/dt (37), T / T_SCALE, v / V_SCALE]`` (39 entries). The
+    residual has 38 entries, so a fixed speed (:func:`periodic_orbit`) or an extra
+    arclength condition (:func:`railhunt.analysis.continuation.bifurcation_diagram`)
+    closes the system.
+
+    Parameters
+    ----------
+    model : Model
+        The vehicle model.
+    symmetric : bool
+        Shoot over half a period with the odd-symmetry residual (module docstring).
+    dt : float, optional
+        Largest RK4 step (s); default the model's automatic step at ``dt_speed``.
+    dt_speed : float
+        Speed (m/s) at which the automatic step is evaluated (use the highest speed).
+    locate_switching : bool
+        Locate damper blow-off switchings inside steps.
+    """
+
+    T_SCALE = 1e-2
+    V_SCALE = 1.0
+
+    def __init__(self, model: Model, symmetric: bool = True, dt: float | None = None,
+                 dt_speed: float = 140.0, locate_switching: bool = True) -> None:  # fmt: skip
+        self.model = model
+        self.symmetric = symmetric
+        self.dt = auto_step(model, dt_speed) if dt is None else float(dt)
+        if not (math.isfinite(self.dt) and 0 < self.dt <= 0.01):
+            raise ValueError(f"dt = {self.dt!r} s is invalid: must be in (0, 0.01] s")
+        self.locate = bool(locate_switching)
+        self.n_steps = 0  # set by set_period_hint
+        self._keep = np.ones(N_STATE, dtype=bool)
+        self._keep[PHASE_INDEX] = False
+        self._no_samples = np.empty((0, 0))
+
+    # -- packing --------------------------------------------------------------------
+    def set_period_hint(self, period: float) -> None:
+        """Fix the number of grid steps from an expected period (s); kept for a branch."""
+        horizon = period / 2 if self.symmetric else period
+        self.n_steps = max(32, int(math.ceil(horizon / self.dt)))
+
+    def pack(self, x0: np.ndarray, period: float, speed: float) -> np.ndarray:
+        """Scaled unknown vector from state, period (s) and speed (m/s)."""
+        return np.concatenate([(x0 / STATE_SCALE)[self._keep],
+                               [period / self.T_SCALE, speed / self.V_SCALE]])  # fmt: skip
+
+    def unpack(self, u: np.ndarray) -> tuple[np.ndarray, float, float]:
+        """State (SI), period (s) and speed (m/s) from a scaled unknown vector."""
+        x0 = np.zeros(N_STATE)
+        x0[self._keep] = u[:-2] * STATE_SCALE[self._keep]
+        return x0, float(u[-2] * self.T_SCALE), float(u[-1] * self.V_SCALE)
+
+    # -- the map --------------------------------------------------------------------
+    def end_state(self, x0: np.ndarray, period: float, speed: float,
+                  samples: np.ndarray | None = None) -> np.ndarray:  # fmt: skip
+        """State after the shooting horizon (half or whole period)."""
+        if self.n_steps == 0:
+            self.set_period_hint(period)
+        horizon = period / 2 if self.symmetric else period
+        smp = self._no_samples if samples is None else samples
+        x, _ = flow(np.ascontiguousarray(x0, dtype=np.float64), horizon, self.n_steps,
+                    self.locate, *self.model.args(speed), smp)  # fmt: skip
+        return x
+
+    def _residual_state(self, x0: np.ndarray, period: float, speed: float) -> np.ndarray:
+        xe = self.end_state(x0, period, speed)
+        r = xe + x0 if self.symmetric else xe - x0
+        return r / STATE_SCALE
+
+    def residual(self, u: np.ndarray) -> np.ndarray:
+        """Scaled shooting residual (38 entries); infinite where period or speed is <= 0."""
+        x0, period, speed = self.unpack(u)
+        if not (period > 0 and speed > 0):
+            return np.full(N_STATE, np.inf)
+        return self._residual_state(x0, period, speed)
+
+    def linearise(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Derivatives of the end state by forward differences (40 flows).
+
+        Returns
+        -------
+        x_end : numpy.ndarray
+            End state of the shooting horizon.
+        m : numpy.ndarray, shape (38, 38)
+            ``d x_end / d x0`` (the half-period map's derivative when symmetric).
+        d_period, d_speed : numpy.ndarray
+            ``d x_end / d T`` (per s) and ``d x_end / d v`` (per m/s).
+        """
+        x0, period, speed = self.unpack(u)
+        xe = self.end_state(x0, period, speed)
+        m = np.empty((N_STATE, N_STATE))
+        for k in range(N_STATE):
+            h = FD_STEP * STATE_SCALE[k]
+            xp = x0.copy()
+            xp[k] += h
+            m[:, k] = (self.end_state(xp, period, speed) - xe) / h
+        hp = FD_STEP * 10 * self.T_SCALE
+        d_period = (self.end_state(x0, period + hp, speed) - xe) / hp
+        hv = FD_STEP * 10 * self.V_SCALE
+        d_speed = (self.end_state(x0, period, speed + hv) - xe) / hv
+        return xe, m, d_period, d_speed
+
+    def jacobian(self, u: np.ndarray, r0: np.ndarray | None = None,
+                 lin: tuple | None = None) -> np.ndarray:  # fmt: skip
+        """Jacobian of :meth:`residual` with respect to ``u`` (38 x 39)."""
+        _, m, d_period, d_speed = self.linearise(u) if lin is None else lin
+        a = m + np.eye(N_STATE) if self.symmetric else m - np.eye(N_STATE)
+        jac = np.empty((N_STATE, u.size))
+        jac[:, :-2] = (a * STATE_SCALE[None, :])[:, self._keep] / STATE_SCALE[:, None]
+        jac[:, -2] = d_period * self.T_SCALE / STATE_SCALE
+        jac[:, -1] = d_speed * self.V_SCALE / STATE_SCALE
+        return jac
+
+    def floquet(self, m: np.ndarray) -> np.ndarray:
+        """Floquet multipliers from the horizon map's derivative, by decreasing modulus."""
+        mult = np.linalg.eigvals(-m) ** 2 if self.symmetric else np.linalg.eigvals(m)
+        return mult[np.argsort(-np.abs(mult))]
+
+    def amplitudes(self, x0: np.ndarray, period: float, speed: float) -> np.ndarray:
+        """Largest |lateral displacement| of each wheelset over the orbit (m), shape (4,).
+
+        Each peak is refined by a parabola through the three samples around it.
+        """
+        samples = np.empty((self.n_steps + 1, WHEELSET_Y[-1] + 1))
+        self.end_state(x0, period, speed, samples)
+        out = np.empty(4)
+        for j, col in enumerate(WHEELSET_Y):
+            y = np.abs(samples[:, col])  # half a symmetric orbit holds both extremes
+            k = int(np.argmax(y))
+            out[j] = y[k]
+            if 0 < k < y.size - 1:
+                a, b, c = y[k - 1], y[k], y[k + 1]
+                den = a - 2 * b + c
+                if den < 0:
+                    out[j] = b - 0.125 * (a - c) ** 2 / den
+        return out
+
+    def orbit(self, u: np.ndarray, residual: float = 0.0, iterations: int = 0,
+              lin: tuple | None = None) -> PeriodicOrbit:  # fmt: skip
+        """Orbit properties (amplitude, multipliers, stability) at a converged ``u``."""
+        x0, period, speed = self.unpack(u)
+        lin = self.linearise(u) if lin is None else lin
+        mult = self.floquet(lin[1])
+        stable = bool(np.max(np.abs(_nontrivial(mult))) < 1.0)
+        amps = self.amplitudes(x0, period, speed)
+        return PeriodicOrbit(speed, x0, period, float(amps[0]), mult, stable, residual,
+                             iterations, self.symmetric, amps)  # fmt: skip
+
+
+def newton(
+    fun, jac_fun, u0: np.ndarray, tol: float = 1e-8, max_iter: int = 12,
+    jac: np.ndarray | None = None,
+) -> tuple[np.ndarray, float, int, bool, np.ndarray | None]:
+    """Newton's method on a square system with damping by step halving.
+
+    ``fun(u)`` returns the residual, ``jac_fun(u, r)`` its Jacobian. When ``jac`` is given
+    it is used first (chord step) and recomputed only if convergence stalls.
+
+    Returns
+    -------
+    u, residual_norm, iterations, converged, last_jacobian
+    """
+    u = u0.copy()
+    r = fun(u)
+    norm = float(np.max(np.abs(r)))
+    if not math.isfinite(norm):
+        return u, norm, 0, False, jac
+    for it in range(1, max_iter + 1):
+        if norm < tol:
+            return u, norm, it - 1, True, jac
+        fresh = jac is None
+        if fresh:
+            jac = jac_fun(u, r)
+        try:
+            du = np.linalg.solve(jac, -r)
+        except np.linalg.LinAlgError:
+            return u, norm, it, False, jac
+        lam = 1.0
+        for _ in range(6):
+            un = u + lam * du
+            rn = fun(un)
+            nn = float(np.max(np.abs(rn)))
+            if math.isfinite(nn) and nn < norm:
+                break
+            lam *= 0.5
+        else:
+            if not fresh:
+                jac = None  # stalled with an old Jacobian: refresh and retry
+                continue
+            return u, norm, it, False, jac
+        ratio = nn / norm
+        u, r, norm = un, rn, nn
+        if ratio > 0.25:
+            jac = None  # slow (chord) convergence: refresh the Jacobian
+    return u, norm, max_iter, norm < tol, jac
+
+
+def periodic_orbit(
+    vehicle_or_model,
+    speed_kmh: float,
+    x0: np.ndarray,
+    period: float,
+    symmetric: bool = True,
+    dt: float | None = None,
+    tol: float = 1e-8,
+    creep_law: str = "heuristic",
+) -> PeriodicOrbit:
+    """Limit cycle at a fixed speed by shooting from a guess.
+
+    Parameters
+    ----------
+    vehicle_or_model : Vehicle or Model
+        The vehicle.
+    speed_kmh : float
+        Speed (km/h).
+    x0 : numpy.ndarray, shape (38,)
+        A state on or near the orbit (e.g. the end of a simulation); it is moved to the
+        nearest extremum of y_w1 by the phase condition.
+    period : float
+        Period guess (s).
+    symmetric : bool
+        Use the half-period symmetric residual.
+    dt : float, optional
+        Largest RK4 step (s); default automatic.
+    tol : float
+        Newton tolerance on the scaled residual.
+
+    Raises
+    ------
+    RuntimeError
+        When Newton does not converge.
+    """
+    model = vehicle_or_model if isinstance(vehicle_or_model, Model) else Model(
+        vehicle_or_model, creep_law=creep_law)
+    speed = speed_kmh / 3.6
+    if not (math.isfinite(period) and period > 0):
+        raise ValueError(f"period = {period!r} s is invalid: must be finite and > 0")
+    shoot = Shooting(model, symmetric=symmetric, dt=dt, dt_speed=speed)
+    shoot.set_period_hint(period)
+    x0 = np.array(x0, dtype=np.float64)
+    x0[PHASE_INDEX] = 0.0
+    u0 = shoot.pack(x0, period, speed)[:-1]
+    vs = speed / Shooting.V_SCALE
+
+    def fun(w: np.ndarray) -> np.ndarray:
+        return shoot.residual(np.append(w, vs))
+
+    def jac_fun(w: np.ndarray, r: np.ndarray) -> np.ndarray:
+        return shoot.jacobian(np.append(w, vs), r)[:, :-1]
+
+    w, norm, it, ok, _ = newton(fun, jac_fun, u0, tol=tol, max_iter=20)
+    if not ok:
+        raise RuntimeError(
+            f"shooting did not converge at {speed_kmh:.1f} km/h "
+            f"(scaled residual {norm:.2e} after {it} iterations)"
+        )
+    return shoot.orbit(np.append(w, vs), norm, it)
+
+
+def phase_origin(t: np.ndarray, y: np.ndarray) -> int:
+    """Index of the last local maximum of ``y`` (a good phase origin for shooting)."""
+    k = y.size - 2
+    while k > 0 and not (y[k] >= y[k - 1] and y[k] >= y[k + 1]):
+        k -= 1
+    return max(k, 0)
