@@ -15,7 +15,8 @@ The paper's Fig. 5 defines the types: *subcritical* (the branch leaves the Hopf 
 toward lower speeds, unstable, and turns at a fold ``V_nl < V_lim``), *supercritical (b)*
 (the branch leaves toward higher speeds, stable, and grows without folding) and
 *supercritical (a)* (the branch leaves toward higher speeds, stable, then folds back
-unstable to ``V_nl < V_lim`` and folds again onto a large stable cycle).
+unstable and folds again onto a large stable cycle); :func:`classify_hopf` tells them
+apart, with a tolerance explained there.
 """
 
 from __future__ import annotations
@@ -38,6 +39,8 @@ from railhunt.model import N_STATE, Y_W1, Model
 from railhunt.vehicle import Vehicle
 
 HOPF_TYPES = ("subcritical", "supercritical-a", "supercritical-b")
+__all__ = ["HOPF_TYPES", "BifurcationDiagram", "Branch", "Fold", "bifurcation_diagram",
+           "classify_hopf"]
 
 
 @dataclass
@@ -478,16 +481,38 @@ def bifurcation_diagram(
         orbits = parts[0][::-1] + [orbit_c] + parts[1]
         branches.append(_make_branch(orbits, "simulation"))
 
-    # Type from the Hopf branch's first steps and folds (Fig. 5).
-    hb = branches[0]
-    if hb.speed_kmh[2] < hb.speed_kmh[1]:
-        hopf_type = "subcritical"
-    else:
-        hopf_type = "supercritical-a" if hb.folds else "supercritical-b"
+    hopf_type = classify_hopf(branches[0], hopf)
     lowest = min([hopf] + [float(np.min(b.speed_kmh)) for b in branches]
                  + [f.speed_kmh for b in branches for f in b.folds])  # fmt: skip
     return BifurcationDiagram(branches, hopf, hopf_from_orbits, linear.frequency_hz, lowest,
                               hopf_type, (lo, hi), complete, "; ".join(messages))  # fmt: skip
+
+
+def classify_hopf(branch: Branch, hopf_kmh: float, tol_kmh: float | None = None) -> str:
+    """Type of the Hopf bifurcation from the shape of its branch (the paper's Fig. 5).
+
+    ``"subcritical"`` when the branch falls more than ``tol_kmh`` below the Hopf speed
+    before it rises more than ``tol_kmh`` above it; otherwise ``"supercritical-a"`` when it
+    later turns back toward lower speeds by more than ``tol_kmh`` (a fold pair: small and
+    large cycles coexist), else ``"supercritical-b"``.
+
+    The tolerance (default ``max(2 km/h, 1 % of the Hopf speed)``) is needed because the
+    heuristic creep saturation (Eq. 28) reduces the creep forces in proportion to the
+    amplitude itself (``alpha = 1 - beta/3 + ...``), so the branch always starts toward
+    lower speeds, by ``O(amplitude)``: a dip of a km/h or two at sub-millimetre amplitude
+    that no excitation of engineering size can tell from a supercritical start.
+    """
+    tol = max(2.0, 0.01 * hopf_kmh) if tol_kmh is None else float(tol_kmh)
+    speed = branch.speed_kmh
+    below = np.flatnonzero(speed < hopf_kmh - tol)
+    above = np.flatnonzero(speed > hopf_kmh + tol)
+    if below.size and (not above.size or below[0] < above[0]):
+        return "subcritical"
+    if above.size:
+        running_max = np.maximum.accumulate(speed[above[0]:])
+        if np.any(running_max - speed[above[0]:] > tol):
+            return "supercritical-a"
+    return "supercritical-b"
 
 
 def _on_branch(branch: Branch, orbit: PeriodicOrbit, rel: float = 0.02) -> bool:
