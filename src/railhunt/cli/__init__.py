@@ -9,6 +9,7 @@ imported inside the commands, so ``railhunt --help`` stays fast.
 from __future__ import annotations
 
 import contextlib
+import functools
 import json
 import math
 import sys
@@ -238,8 +239,8 @@ def _single_defect(amplitude_mm: float, wavelength: float) -> Any:
         return SingleDefect(amplitude=amplitude_mm * 1e-3, wavelength=wavelength)
 
 
-def _method_options(func: Callable[..., Any]) -> Callable[..., Any]:
-    """Add ``--method`` and ``--dt`` to a command."""
+def _method_options(func: Callable[..., Any], stochastic: bool = False) -> Callable[..., Any]:
+    """Add ``--method`` and ``--dt`` to a command (``stochastic``: also the search method)."""
     func = click.option(
         "--dt",
         type=float,
@@ -249,13 +250,21 @@ def _method_options(func: Callable[..., Any]) -> Callable[..., Any]:
         help="Time step of the fixed-step rk4 integrator (s). Default: chosen from the "
         "model's fastest dynamics (1 ms for the paper's vehicle).",
     )(func)
+    choices = ["rk4", "dopri5"] + (["stochastic"] if stochastic else [])
+    extra = (
+        " 'stochastic': instead of the single defect, run (with rk4) over a random "
+        "irregular track and find the lowest speed that breaks the acceptance-test "
+        "instability criterion (EN 14363 style)."
+        if stochastic
+        else ""
+    )
     func = click.option(
         "--method",
-        type=click.Choice(["rk4", "dopri5"]),
+        type=click.Choice(choices),
         default="rk4",
         show_default=True,
         help="Integrator: classical fixed-step Runge-Kutta (the paper's) or adaptive "
-        "Dormand-Prince 5(4).",
+        "Dormand-Prince 5(4)." + extra,
     )(func)
     return func
 
@@ -633,7 +642,40 @@ def _linear_line(linear: Any) -> str:
              "Step while bracketing the critical speed (km/h).")  # fmt: skip
 @_kmh_option("--tol", "tol_kmh", 1.0, 800.0,
              "Resolution of the bisection (km/h); at most --step.")  # fmt: skip
-@_method_options
+@functools.partial(_method_options, stochastic=True)
+@click.option(
+    "--spectrum",
+    default="german-high",
+    show_default=True,
+    metavar="NAME",
+    help="With --method stochastic: track spectrum of the lateral alignment: german-low, "
+    "german-high (German high-speed spectra, low/high disturbance) or fra-1 ... fra-6 "
+    "(US FRA track classes, 6 the best).",
+)
+@click.option(
+    "--seed",
+    type=click.IntRange(0, 2**63 - 1),
+    default=1,
+    show_default=True,
+    help="With --method stochastic: seed of the random track (same seed, same track).",
+)
+@click.option(
+    "--track-length",
+    type=float,
+    default=2000.0,
+    show_default=True,
+    metavar="M",
+    callback=_number_range("m", 200.0, 1e5, low_open=False),
+    help="With --method stochastic: length of the irregular track run over at each speed (m).",
+)
+@click.option(
+    "--irregularity",
+    "irregularity_file",
+    type=click.Path(exists=True, dir_okay=False, path_type=Path),
+    metavar="FILE",
+    help="With --method stochastic: run over this measured alignment instead (CSV with "
+    "columns 'distance' and 'alignment', units [m] or [mm] in the header).",
+)
 @click.option(
     "--json",
     "as_json",
@@ -649,6 +691,10 @@ def critical_speed(
     tol_kmh: float,
     method: str,
     dt: float | None,
+    spectrum: str,
+    seed: int,
+    track_length: float,
+    irregularity_file: Path | None,
     as_json: bool,
     vehicle_file: Path | None,
     sets: dict[str, float],
@@ -669,10 +715,54 @@ def critical_speed(
     usually higher: below it small disturbances die out, but a large enough
     disturbance can already throw the vehicle onto a hunting limit cycle,
     which is why the nonlinear value is the one that matters in service.
+
+    \b
+    Stochastic critical speed (--method stochastic, the paper's excitation
+    type (c)): at each trial speed the vehicle runs over a random irregular
+    track (--spectrum, --seed, --track-length) or a measured one
+    (--irregularity FILE); the acceptance-test instability criterion (EN 14363
+    style) compares the 100 m sliding rms of the sum of guiding forces and of
+    the bogie frame lateral acceleration, band-passed f0 +/- 2 Hz, with their
+    limits. The result is the lowest speed that breaks the criterion (km/h).
     """
+    ctx = click.get_current_context()
+    explicit = {
+        name
+        for name in ctx.params
+        if ctx.get_parameter_source(name) is click.core.ParameterSource.COMMANDLINE
+    }
+    track_opts = {"spectrum": "--spectrum", "seed": "--seed", "track_length": "--track-length",
+                  "irregularity_file": "--irregularity"}  # fmt: skip
+    if method == "stochastic":
+        for name, flag in (("amplitude", "--amplitude"), ("wavelength", "--wavelength")):
+            if name in explicit:
+                raise CliError(
+                    f"{flag} describes the single defect and cannot be combined with "
+                    "--method stochastic (which runs over an irregular track)"
+                )
+        if irregularity_file is not None:
+            for name in ("spectrum", "seed", "track_length"):
+                if name in explicit:
+                    raise CliError(
+                        f"{track_opts[name]} cannot be combined with --irregularity: the "
+                        "measured track replaces the random one"
+                    )
+    else:
+        given = [flag for name, flag in track_opts.items() if name in explicit]
+        if given:
+            raise CliError(f"{given[0]} only applies with --method stochastic")
     vehicle = _build_vehicle(vehicle_file, sets)
     if tol_kmh > step_kmh:
         raise CliError(f"--tol {tol_kmh:g} km/h is invalid: must be <= --step {step_kmh:g} km/h")
+    if method == "stochastic":
+        from railhunt.cli.stochastic import stochastic_critical_speed_command
+
+        stochastic_critical_speed_command(
+            vehicle, spectrum=spectrum, seed=seed, track_length=track_length,
+            irregularity_file=irregularity_file, start_kmh=start_kmh, step_kmh=step_kmh,
+            tol_kmh=tol_kmh, dt=dt, as_json=as_json,
+        )  # fmt: skip
+        return
 
     from railhunt.analysis.critical import critical_speed as run_critical_speed
     from railhunt.analysis.linear import linear_critical_speed
@@ -787,6 +877,7 @@ def _critical_json(
     vehicle: Any, excitation: Any, tol_kmh: float, result: Any, linear: Any
 ) -> dict[str, Any]:
     data = {
+        "method": "defect",
         "nonlinear_critical_speed_kmh": result.speed_kmh,
         "linear_critical_speed_kmh": linear.speed_kmh,
         "linear_hunting_frequency_hz": linear.frequency_hz,
