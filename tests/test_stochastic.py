@@ -203,3 +203,64 @@ def test_invalid_search_arguments(track):
         stochastic_critical_speed(VEHICLE, irregularity="german-low")
     with pytest.raises(ValueError, match="f0_hz"):
         stochastic_critical_speed(VEHICLE, track, f0_hz=-1.0)
+
+
+# --------------------------------------------------------------------------- CLI
+
+
+def test_cli_stochastic_json_adds_keys(tmp_path):
+    from test_cli import run
+
+    result = run("critical-speed", "--method", "stochastic", "--spectrum", "german-high",
+                 "--track-length", "600", "--start", "280", "--step", "20", "--tol", "10",
+                 "--json")  # fmt: skip
+    assert result.exit_code == 0, result.stderr
+    import json
+
+    data = json.loads(result.stdout)
+    assert data["method"] == "stochastic" and data["bracketed"] is True
+    assert 200 < data["stochastic_critical_speed_kmh"] < data["linear_critical_speed_kmh"]
+    assert data["criterion"]["sum_y_limit_kn"] == pytest.approx(22.803, abs=1e-3)
+    assert data["irregularity"]["spectrum"] == "german-high"
+    assert data["irregularity"]["seed"] == 1
+    assert {"f0_hz", "sum_y_ratio", "acceleration_ratio"} <= set(data["trials"][0])
+
+
+def test_cli_stochastic_measured_file(tmp_path):
+    from test_cli import run
+
+    track = track_irregularity("german-low", length=400.0, dx=0.25, seed=3)
+    path = tmp_path / "track.csv"
+    np.savetxt(path, np.column_stack([track.distance, track.alignment * 1e3]), delimiter=",",
+               header="distance [m],alignment [mm]", comments="")  # fmt: skip
+    result = run("critical-speed", "--method", "stochastic", "--irregularity", str(path),
+                 "--start", "200", "--step", "50", "--tol", "50")  # fmt: skip
+    assert result.exit_code == 0, result.stderr
+    assert "measured alignment" in result.stdout and "stochastic critical speed" in result.stdout
+
+
+@pytest.mark.parametrize(
+    "args, fragments",
+    [
+        (["--method", "stochastic", "--amplitude", "5"], ["--amplitude", "--method stochastic"]),
+        (["--spectrum", "german-low"], ["--spectrum only applies with --method stochastic"]),
+        (["--method", "stochastic", "--spectrum", "bad"], ["spectrum = 'bad'", "german-low"]),
+        (["--method", "stochastic", "--track-length", "50"], ["--track-length", "200"]),
+        (["--method", "monte-carlo"], ["--method", "stochastic"]),
+    ],
+)
+def test_cli_stochastic_input_errors(args, fragments):
+    from test_cli import assert_input_error, run
+
+    assert_input_error(run("critical-speed", *args), *fragments)
+
+
+def test_cli_help_lists_every_spectrum():
+    from railhunt.irregularity import SPECTRA
+    from test_cli import run
+
+    text = run("critical-speed", "--help").stdout
+    assert "stochastic" in text
+    for name in ("german-low", "german-high", "fra-1", "fra-6"):
+        assert name in text
+    assert all(n.startswith(("german-", "fra-")) for n in SPECTRA)
