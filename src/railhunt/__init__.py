@@ -12,6 +12,8 @@ Main entry points (imported lazily, so ``import railhunt`` stays fast)::
     critical_speed                   nonlinear critical speed by bisection (the paper's)
     eigen_analysis                   eigenvalues and hunting mode versus speed
     SingleDefect, InitialDisplacement  excitations
+    track_irregularity, load_irregularity  random (published PSD) or measured track
+    stochastic_critical_speed        lowest speed breaking the EN 14363-style criterion
 """
 
 from __future__ import annotations
@@ -34,6 +36,12 @@ _EXPORTS = {
     "linear_critical_speed": "railhunt.analysis.linear",
     "eigen_analysis": "railhunt.analysis.linear",
     "critical_speed": "railhunt.analysis.critical",
+    "track_irregularity": "railhunt.irregularity",
+    "load_irregularity": "railhunt.irregularity",
+    "track_spectrum": "railhunt.irregularity",
+    "TrackIrregularity": "railhunt.irregularity",
+    "stochastic_critical_speed": "railhunt.analysis.stochastic",
+    "assess_stability": "railhunt.analysis.stochastic",
 }
 
 __all__ = sorted(_EXPORTS)

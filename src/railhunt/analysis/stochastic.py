@@ -235,6 +235,10 @@ def assess(
     )  # fmt: skip
 
 
+#: Public name of :func:`assess` in the ``railhunt`` namespace.
+assess_stability = assess
+
+
 def run_on_track(
     vehicle: Vehicle, speed_kmh: float, track: SampledTrack, model: Model | None = None,
     dt: float | None = None, output_dt: float = 2e-3, f0_hz: float | None = None,
@@ -385,6 +389,7 @@ __all__ = [
     "TrackIrregularity",
     "acceleration_limit",
     "assess",
+    "assess_stability",
     "band_pass",
     "dominant_frequency",
     "sliding_rms",

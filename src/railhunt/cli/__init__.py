@@ -342,8 +342,11 @@ Which command answers which question:
   eigen           How well damped is the hunting mode of the linearised
                   model at each speed, and at what frequency does it hunt?
   critical-speed  Above which speed does the vehicle hunt?  Nonlinear
-                  (simulation, the paper's method) and linear (eigenvalues).
+                  (simulation, the paper's method) and linear (eigenvalues);
+                  --method stochastic: irregular track, EN 14363 criterion.
   parameters      Which vehicle parameters exist, with values and units.
+  spectrogram     Which frequencies dominate a measured signal, and when?
+                  (short-time Fourier transform of a CSV channel)
 
 \b
 Units: speeds in km/h; defect amplitudes and displacements in mm;
