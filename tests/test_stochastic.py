@@ -264,3 +264,52 @@ def test_cli_help_lists_every_spectrum():
     for name in ("german-low", "german-high", "fra-1", "fra-6"):
         assert name in text
     assert all(n.startswith(("german-", "fra-")) for n in SPECTRA)
+
+
+def test_cli_simulate_on_irregular_track_reports_criterion(tmp_path):
+    from test_cli import run
+
+    csv_file = tmp_path / "run.csv"
+    result = run("simulate", "--speed", "200", "--duration", "8", "--spectrum", "german-low",
+                 "--seed", "2", "--csv", str(csv_file), "--output-dt", "0.002")  # fmt: skip
+    assert result.exit_code == 0, result.stderr
+    assert "german-low irregularity, seed 2" in result.stdout
+    assert "criterion:  stable" in result.stdout
+    header = csv_file.read_text().splitlines()[0]
+    assert "SY_w1 [N]" in header and "ddy_t1 [m/s^2]" in header
+
+
+@pytest.mark.parametrize(
+    "args, fragments",
+    [
+        (["--spectrum", "german-low", "--irregularity", __file__],
+         ["--spectrum", "--irregularity"]),
+        (["--spectrum", "german-low", "--initial-displacement", "2"], ["--initial-displacement"]),
+        (["--seed", "4"], ["--seed only applies with --spectrum"]),
+        (["--spectrum", "nope"], ["--spectrum", "spectrum = 'nope'"]),
+    ],
+)
+def test_cli_simulate_irregular_input_errors(args, fragments):
+    from test_cli import assert_input_error, run
+
+    assert_input_error(run("simulate", "--speed", "200", *args), *fragments)
+
+
+def test_spectrogram_of_a_simulated_limit_cycle(tmp_path):
+    # End to end: simulate --csv at 350 km/h (on the limit cycle after the defect; the
+    # README's FFT gives 4.82 Hz), then spectrogram of y_w1: the dominant band after the
+    # transient is within one bin (0.25 Hz, 4 s windows) of 4.82 Hz.
+    import json
+
+    from test_cli import run
+
+    csv_file = tmp_path / "run.csv"
+    res = run("simulate", "--speed", "350", "--duration", "40", "--output-dt", "0.004",
+              "--csv", str(csv_file))  # fmt: skip
+    assert res.exit_code == 0, res.stderr
+    out = run("spectrogram", str(csv_file), "--channel", "y_w1", "--window", "4", "--json")
+    assert out.exit_code == 0, out.stderr
+    bands = json.loads(out.stdout)["bands"]
+    late = [b for b in bands if b["start_s"] >= 20.0 or b["end_s"] >= 30.0]
+    assert late and all(b["frequency_hz"] == pytest.approx(4.82, abs=0.25) for b in late)
+    assert max(b["amplitude"] for b in late) > 5e-3  # a limit cycle of several mm (m)

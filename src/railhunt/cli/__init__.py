@@ -406,6 +406,29 @@ def main() -> None:
     help="Instead of a track defect, start with all four wheelsets displaced "
     "laterally by this much (mm) on ideal track.",
 )
+@click.option(
+    "--spectrum",
+    default=None,
+    metavar="NAME",
+    help="Instead of a track defect, run over a random lateral alignment following this "
+    "track spectrum (german-low, german-high, fra-1 ... fra-6), long enough for the whole "
+    "run, and report the acceptance-test instability criterion.",
+)
+@click.option(
+    "--seed",
+    type=click.IntRange(0, 2**63 - 1),
+    default=1,
+    show_default=True,
+    help="With --spectrum: seed of the random track (same seed, same track).",
+)
+@click.option(
+    "--irregularity",
+    "irregularity_file",
+    type=click.Path(exists=True, dir_okay=False, path_type=Path),
+    metavar="FILE",
+    help="Instead of a track defect, run over this measured alignment (CSV with columns "
+    "'distance' and 'alignment', units [m] or [mm] in the header).",
+)
 @_method_options
 @click.option(
     "--output-dt",
@@ -437,6 +460,9 @@ def simulate(
     amplitude: float,
     wavelength: float,
     initial_displacement: float | None,
+    spectrum: str | None,
+    seed: int,
+    irregularity_file: Path | None,
     method: str,
     dt: float | None,
     output_dt: float | None,
@@ -454,6 +480,13 @@ def simulate(
     with its wheelsets offset on ideal track. Below the critical speed the
     motion decays back to the centre line; above it the leading wheelset
     settles on a hunting limit cycle (or derails beyond 25 mm).
+
+    \b
+    With --spectrum NAME (or --irregularity FILE) it runs over an irregular
+    track instead (the paper's excitation type (c)), each wheelset meeting it
+    in turn, and prints the acceptance-test instability criterion (100 m
+    sliding rms of the sum of guiding forces and of the bogie frame lateral
+    acceleration, band-passed f0 +/- 2 Hz, against their limits).
 
     Prints the run's status and the leading wheelset's peak and final
     lateral amplitude (mm); --csv and --png save the details.
@@ -474,6 +507,17 @@ def simulate(
             f"--initial-displacement cannot be combined with --{explicit[0]}: "
             "choose either a track defect or an initial displacement"
         )
+    track_given = (("--spectrum", spectrum), ("--irregularity", irregularity_file))
+    irregular = [flag for flag, value in track_given if value]
+    if len(irregular) == 2:
+        raise CliError("--spectrum cannot be combined with --irregularity: choose one track")
+    if irregular and (explicit or initial_displacement is not None):
+        other = f"--{explicit[0]}" if explicit else "--initial-displacement"
+        raise CliError(
+            f"{irregular[0]} cannot be combined with {other}: choose one excitation"
+        )
+    if ctx.get_parameter_source("seed") is click.core.ParameterSource.COMMANDLINE and not spectrum:
+        raise CliError("--seed only applies with --spectrum")
     vehicle = _build_vehicle(vehicle_file, sets)
 
     import numpy as np
@@ -485,6 +529,18 @@ def simulate(
         with _user_input():
             excitation: Any = InitialDisplacement(amplitude=initial_displacement * 1e-3)
         described = f"all wheelsets displaced by {initial_displacement:g} mm"
+    elif irregular:
+        from railhunt.irregularity import load_irregularity, track_irregularity
+
+        with _user_input(f"{irregular[0]}: "):
+            if spectrum:
+                length = min(max(speed / 3.6 * duration, 200.0), 1e5)
+                excitation = track_irregularity(spectrum, length=length, seed=seed)
+                described = f"{spectrum} irregularity, seed {seed}"
+            else:
+                excitation = load_irregularity(irregularity_file)
+                described = f"measured alignment {irregularity_file}"
+        described += f", {excitation.length:g} m, rms {excitation.rms * 1e3:.2f} mm"
     else:
         excitation = _single_defect(amplitude, wavelength)
         described = f"{amplitude:g} mm x {wavelength:g} m lateral bump at {excitation.start:g} m"
@@ -503,13 +559,28 @@ def simulate(
     y = np.abs(result["y_w1"]) * 1e3
     final = float(y[t >= t[-1] - 1.0].max())
     note = "max |y_w1| over the last 1 s"
-    if result.excitation_end > t[-1]:
+    if result.excitation_end > t[-1] and not irregular:
         note += "; the run ended before the last wheelset left the defect"
     click.echo(f"vehicle:    {vehicle.name}")
     click.echo(f"speed:      {speed:g} km/h, {method}, {t[-1]:g} s simulated")
     click.echo(f"excitation: {described}")
     click.echo(f"status:     {result.status} ({result.message})")
     click.echo(f"y_w1:       peak {y.max():.3f} mm, final amplitude {final:.3f} mm ({note})")
+    if irregular:
+        from railhunt.analysis.stochastic import assess
+
+        with _user_input():
+            a = assess(result, vehicle)
+        if a.distance.size:
+            click.echo(
+                f"criterion:  {a.verdict} (f0 {a.f0_hz:.2f} Hz; ΣY rms max "
+                f"{a.sum_y_rms.max() / 1e3:.2f} kN = {a.sum_y_ratio:.2f} x limit "
+                f"{a.sum_y_limit / 1e3:.2f} kN; bogie frame rms max "
+                f"{a.acceleration_rms.max():.2f} m/s^2 = {a.acceleration_ratio:.2f} x limit "
+                f"{a.acceleration_limit:.2f} m/s^2)"
+            )
+        else:
+            click.echo("criterion:  not evaluated (the run covers less than 100 m of track)")
 
     if csv_file is not None:
         with _user_input("cannot write --csv: "):
