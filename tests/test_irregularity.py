@@ -155,9 +155,23 @@ def test_round_trip_of_generated_track(tmp_path):
     path = tmp_path / "track.csv"
     np.savetxt(path, np.column_stack([track.distance, track.alignment]), delimiter=",",
                header="distance,alignment", comments="")  # fmt: skip
-    back = load_irregularity(path)
+    back = load_irregularity(path, start=None)
     assert back.s0 == 10.0 and back.ds == pytest.approx(0.5)
     assert np.allclose(back.alignment, track.alignment, atol=1e-12)
+    assert load_irregularity(path).s0 == 0.0  # by default the record starts at 0
+
+
+def test_measured_file_taper(tmp_path):
+    s = np.arange(0.0, 100.01, 0.5)
+    path = tmp_path / "flat.csv"
+    np.savetxt(path, np.column_stack([s, np.full(s.size, 0.002)]), delimiter=",",
+               header="distance,alignment", comments="")  # fmt: skip
+    track = load_irregularity(path, taper=10.0)
+    assert track.alignment[0] == 0.0 and track.alignment[-1] == pytest.approx(0.0, abs=1e-18)
+    assert np.allclose(track.alignment[20:-20], 0.002)  # untouched beyond 10 m
+    assert 0.0 < track.alignment[10] < 0.002
+    with pytest.raises(ValueError, match="taper"):
+        load_irregularity(path, taper=80.0)
 
 
 @pytest.mark.parametrize(

@@ -308,7 +308,10 @@ def _split_unit(header: str) -> tuple[str, str | None]:
 
 
 def load_irregularity(
-    path: str | os.PathLike[str], dx: float | None = None, start: float | None = None
+    path: str | os.PathLike[str],
+    dx: float | None = None,
+    start: float | None = 0.0,
+    taper: float = 0.0,
 ) -> TrackIrregularity:
     """Read a measured lateral alignment from a CSV file.
 
@@ -324,8 +327,13 @@ def load_irregularity(
         CSV file.
     dx : float, optional
         Grid spacing (m) of the returned track.
-    start : float, optional
-        Track position (m) of the first sample; default the file's first distance.
+    start : float or None
+        Track position (m) of the first sample (the file's distances are shifted); 0 by
+        default, so the leading wheelset starts at the beginning of the record. ``None``
+        keeps the file's distances (ideal track before the first one).
+    taper : float
+        Length (m) of a raised-cosine fade-in and fade-out at both ends (0: the record
+        as measured; the vehicle then meets the first value as a step).
 
     Returns
     -------
@@ -386,7 +394,13 @@ def load_irregularity(
     s0 = float(s[0]) if start is None else float(start)
     if not (math.isfinite(s0) and 0.0 <= s0 <= 1e5):
         raise ValueError(f"start = {s0!r} m is invalid: must be finite and in [0, 1e5] m")
+    length = step * (n - 1)
+    if not (math.isfinite(taper) and 0.0 <= taper <= length / 2):
+        raise ValueError(
+            f"taper = {taper!r} m is invalid: must be finite and in [0, {length / 2:g}] m "
+            "(half the record)"
+        )
     return TrackIrregularity(
-        s0=s0, ds=step, alignment=np.interp(grid, s, y), spectrum="measured",
-        source=str(path),
+        s0=s0, ds=step, alignment=np.interp(grid, s, y) * _taper(n, step, float(taper)),
+        spectrum="measured", source=str(path),
     )  # fmt: skip

@@ -427,7 +427,8 @@ def main() -> None:
     type=click.Path(exists=True, dir_okay=False, path_type=Path),
     metavar="FILE",
     help="Instead of a track defect, run over this measured alignment (CSV with columns "
-    "'distance' and 'alignment', units [m] or [mm] in the header).",
+    "'distance' and 'alignment', units [m] or [mm] in the header; shifted to start at "
+    "0 m and faded in and out over 20 m).",
 )
 @_method_options
 @click.option(
@@ -530,7 +531,8 @@ def simulate(
             excitation: Any = InitialDisplacement(amplitude=initial_displacement * 1e-3)
         described = f"all wheelsets displaced by {initial_displacement:g} mm"
     elif irregular:
-        from railhunt.irregularity import load_irregularity, track_irregularity
+        from railhunt.cli.stochastic import measured_track
+        from railhunt.irregularity import track_irregularity
 
         with _user_input(f"{irregular[0]}: "):
             if spectrum:
@@ -538,7 +540,7 @@ def simulate(
                 excitation = track_irregularity(spectrum, length=length, seed=seed)
                 described = f"{spectrum} irregularity, seed {seed}"
             else:
-                excitation = load_irregularity(irregularity_file)
+                excitation = measured_track(irregularity_file)
                 described = f"measured alignment {irregularity_file}"
         described += f", {excitation.length:g} m, rms {excitation.rms * 1e3:.2f} mm"
     else:
@@ -748,7 +750,8 @@ def _linear_line(linear: Any) -> str:
     type=click.Path(exists=True, dir_okay=False, path_type=Path),
     metavar="FILE",
     help="With --method stochastic: run over this measured alignment instead (CSV with "
-    "columns 'distance' and 'alignment', units [m] or [mm] in the header).",
+    "columns 'distance' and 'alignment', units [m] or [mm] in the header; shifted to "
+    "start at 0 m and faded in and out over 20 m).",
 )
 @click.option(
     "--json",

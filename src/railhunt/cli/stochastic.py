@@ -24,6 +24,18 @@ from railhunt.cli import (
     _user_input,
 )
 
+#: Fade-in and fade-out (m) applied to measured alignments on the command line.
+MEASURED_TAPER = 20.0
+
+
+def measured_track(path: Path) -> Any:
+    """The measured alignment of ``path``, starting at 0 m, faded in and out over 20 m
+    (or over half the record when it is shorter than 40 m)."""
+    from railhunt.irregularity import load_irregularity
+
+    raw = load_irregularity(path)
+    return load_irregularity(path, taper=min(MEASURED_TAPER, raw.length / 2))
+
 
 @contextlib.contextmanager
 def _progress() -> Iterator[Callable[[Any], None]]:
@@ -65,11 +77,11 @@ def stochastic_critical_speed_command(
         stochastic_critical_speed,
         sum_y_limit,
     )
-    from railhunt.irregularity import load_irregularity, track_irregularity
+    from railhunt.irregularity import track_irregularity
 
     with _user_input("--irregularity: " if irregularity_file else "--spectrum: "):
         if irregularity_file is not None:
-            track = load_irregularity(irregularity_file)
+            track = measured_track(irregularity_file)
         else:
             track = track_irregularity(spectrum, length=track_length, seed=seed)
     with _progress() as on_trial, _user_input():
