@@ -4,6 +4,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from railhunt.analysis.stochastic import (
     acceleration_limit,
@@ -313,3 +315,20 @@ def test_spectrogram_of_a_simulated_limit_cycle(tmp_path):
     late = [b for b in bands if b["start_s"] >= 20.0 or b["end_s"] >= 30.0]
     assert late and all(b["frequency_hz"] == pytest.approx(4.82, abs=0.25) for b in late)
     assert max(b["amplitude"] for b in late) > 5e-3  # a limit cycle of several mm (m)
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    values=st.lists(st.floats(-1e3, 1e3), min_size=50, max_size=400),
+    factor=st.floats(0.01, 100.0),
+    window=st.floats(1.0, 20.0),
+)
+def test_sliding_rms_invariants(values, factor, window):
+    y = np.asarray(values)
+    s = 0.1 * np.arange(y.size)
+    centres, rms = sliding_rms(s, y, window, window / 4)
+    _, scaled = sliding_rms(s, factor * y, window, window / 4)
+    if centres.size:
+        assert np.all(rms >= 0) and np.all(rms <= np.max(np.abs(y)) + 1e-9)
+        assert np.allclose(scaled, factor * rms, rtol=1e-9, atol=1e-9)
+        assert np.all(np.diff(centres) > 0)
