@@ -9,7 +9,11 @@ from click.testing import CliRunner
 
 from railhunt.cli import main
 
-COMMANDS = ["simulate", "eigen", "critical-speed", "parameters"]
+COMMANDS = [
+    "simulate", "eigen", "critical-speed", "parameters", "spectrogram", "bifurcation", "frequency",
+]
+#: Commands that analyse a measured signal and take no vehicle.
+NO_VEHICLE = {"spectrogram"}
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 
 
@@ -63,7 +67,8 @@ def test_command_help(command):
     result = run(command, "--help")
     assert result.exit_code == 0, result.stderr
     assert f"railhunt {command}" in result.stdout
-    assert "--vehicle" in result.stdout and "--set" in result.stdout
+    if command not in NO_VEHICLE:
+        assert "--vehicle" in result.stdout and "--set" in result.stdout
 
 
 # --------------------------------------------------------------------------- critical-speed
@@ -196,3 +201,40 @@ def test_bad_vehicle_file(tmp_path):
     broken = tmp_path / "broken.toml"
     broken.write_text("this is = = not toml\n")
     assert_input_error(run("parameters", "--vehicle", str(broken)), "broken.toml")
+
+
+# --------------------------------------------------------------------------- bifurcation, frequency
+
+
+def test_bifurcation_json_and_png(tmp_path):
+    """A short range around the Hopf point: JSON keys, the Hopf speed and a PNG."""
+    png = tmp_path / "bif.png"
+    result = run("bifurcation", "--from", "420", "--to", "460", "--json", "--png", str(png))
+    assert result.exit_code == 0, result.stderr
+    data = json.loads(result.stdout)
+    for key in ("hopf_speed_kmh", "fold_speed_kmh", "hopf_type", "branches", "point_p", "folds"):
+        assert key in data, key
+    assert data["hopf_type"] in ("subcritical", "supercritical-a", "supercritical-b")
+    assert abs(data["hopf_speed_kmh"] - 441.3) < 0.5
+    assert png.read_bytes()[:8] == PNG_SIGNATURE
+
+
+def test_bifurcation_rejects_inverted_range():
+    assert_input_error(run("bifurcation", "--from", "400", "--to", "300"), "--to", "--from")
+
+
+def test_frequency_table_jump_and_pngs(tmp_path):
+    png, damper = tmp_path / "f.png", tmp_path / "d.png"
+    result = run("frequency", "--from", "340", "--to", "400", "--step", "30", "--json",
+                 "--png", str(png), "--damper-png", str(damper))
+    assert result.exit_code == 0, result.stderr
+    data = json.loads(result.stdout)
+    sources = [p["source"] for p in data["points"]]
+    assert sources[0] == "eigenvalue" and sources[-1] == "limit-cycle"
+    assert data["jump"]["to_hz"] - data["jump"]["from_hz"] > 1.0
+    assert png.read_bytes()[:8] == PNG_SIGNATURE
+    assert damper.read_bytes()[:8] == PNG_SIGNATURE
+
+
+def test_frequency_rejects_bad_amplitude():
+    assert_input_error(run("frequency", "--initial-amplitude", "-3"), "--initial-amplitude")

@@ -16,6 +16,8 @@ Main entry points (imported lazily, so ``import railhunt`` stays fast)::
     hunting_frequency                hunting frequency (eigenvalue or limit cycle)
     eigen_analysis                   eigenvalues and hunting mode versus speed
     SingleDefect, InitialDisplacement  excitations
+    track_irregularity, load_irregularity  random (published PSD) or measured track
+    stochastic_critical_speed        lowest speed breaking the EN 14363-style criterion
 """
 
 from __future__ import annotations
@@ -42,6 +44,12 @@ _EXPORTS = {
     "bifurcation_diagram": "railhunt.analysis.continuation",
     "periodic_orbit": "railhunt.analysis.periodic",
     "hunting_frequency": "railhunt.analysis.frequency",
+    "track_irregularity": "railhunt.irregularity",
+    "load_irregularity": "railhunt.irregularity",
+    "track_spectrum": "railhunt.irregularity",
+    "TrackIrregularity": "railhunt.irregularity",
+    "stochastic_critical_speed": "railhunt.analysis.stochastic",
+    "assess_stability": "railhunt.analysis.stochastic",
 }
 
 __all__ = sorted(_EXPORTS)

@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from railhunt import integrate
+from railhunt.channels import CHANNEL_UNITS, derived_channels
 from railhunt.model import N_STATE, STATE_NAMES, Model
 from railhunt.suspension import DAMPER_NAMES, N_DAMPER
 from railhunt.track import InitialDisplacement, SampledTrack, SingleDefect
@@ -42,6 +43,10 @@ class SimulationResult:
         Velocity of the viscous part of each yaw damper (m/s), one column per damper.
     excitation_end : float
         Time (s) at which the last wheelset has left the excitation.
+    derived : dict
+        Derived channels (:mod:`railhunt.channels`): sums of guiding forces ``SY_w1..4``
+        (N) and bogie frame accelerations ``ddy_t1``, ``ddy_t2`` (m/s^2), ``ddpsi_t1``,
+        ``ddpsi_t2`` (rad/s^2).
     """
 
     t: np.ndarray
@@ -52,6 +57,7 @@ class SimulationResult:
     damper_velocity: np.ndarray
     excitation_end: float = 0.0
     stats: dict = field(default_factory=dict)
+    derived: dict = field(default_factory=dict)
 
     @property
     def speed_kmh(self) -> float:
@@ -65,14 +71,17 @@ class SimulationResult:
 
     @property
     def channel_names(self) -> tuple[str, ...]:
-        """All channel names: states (``y_w1``, ``dy_w1``, ``F_d1``, ...) and ``v_d1..v_d4``."""
-        return STATE_NAMES + tuple("v_" + n for n in DAMPER_NAMES)
+        """All channel names: states (``y_w1``, ``dy_w1``, ``F_d1``, ...), ``v_d1..v_d4``
+        and the derived channels (``SY_w1``, ..., ``ddy_t1``, ...)."""
+        return STATE_NAMES + tuple("v_" + n for n in DAMPER_NAMES) + tuple(self.derived)
 
     def __getitem__(self, name: str) -> np.ndarray:
         if name in STATE_NAMES:
             return self.x[:, STATE_NAMES.index(name)]
         if name.startswith("v_") and name[2:] in DAMPER_NAMES:
             return self.damper_velocity[:, DAMPER_NAMES.index(name[2:])]
+        if name in self.derived:
+            return self.derived[name]
         raise KeyError(
             f"unknown channel {name!r}; channels are: {', '.join(self.channel_names)}"
         )
@@ -80,9 +89,11 @@ class SimulationResult:
     def table(self) -> tuple[list[str], np.ndarray]:
         """Column names (with units) and a 2-D array: time, all channels."""
         units = {"y": "m", "psi": "rad", "phi": "rad", "dy": "m/s", "dpsi": "rad/s",
-                 "dphi": "rad/s", "F": "N", "v": "m/s"}  # fmt: skip
+                 "dphi": "rad/s", "F": "N", "v": "m/s", **CHANNEL_UNITS}  # fmt: skip
         names = ["t [s]"] + [f"{n} [{units[n.split('_')[0]]}]" for n in self.channel_names]
-        return names, np.column_stack([self.t, self.x, self.damper_velocity])
+        return names, np.column_stack(
+            [self.t, self.x, self.damper_velocity, *self.derived.values()]
+        )
 
     def to_csv(self, path: str | os.PathLike[str]) -> Path:
         """Write all channels to a CSV file (SI units, header with units)."""
@@ -205,6 +216,10 @@ def simulate(
         Simulated time (s).
     excitation : SingleDefect or InitialDisplacement or SampledTrack, optional
         Track input or initial condition; ideal track and ``x0`` (default centred) otherwise.
+        A stochastic irregularity (:func:`railhunt.track_irregularity`) or a measured one
+        (:func:`railhunt.load_irregularity`) is a ``SampledTrack``: the excitation type (c)
+        of the paper. Wheelset *j* meets every track input at its own delay
+        ``offset_j / v`` (``offset_j`` its distance behind the leading wheelset).
     method : {"rk4", "dopri5"}
         Fixed-step classical Runge-Kutta (the paper's) or adaptive Dormand-Prince 5(4).
     dt : float, optional
@@ -261,4 +276,5 @@ def simulate(
     return SimulationResult(
         t=t, x=x, speed=speed, status=status, message=message, damper_velocity=vd,
         excitation_end=excitation_end_time(model, excitation, speed), stats=stats,
+        derived=derived_channels(t, x, model.args(speed, excitation)),
     )  # fmt: skip

@@ -9,6 +9,7 @@ imported inside the commands, so ``railhunt --help`` stays fast.
 from __future__ import annotations
 
 import contextlib
+import functools
 import json
 import math
 import sys
@@ -238,8 +239,8 @@ def _single_defect(amplitude_mm: float, wavelength: float) -> Any:
         return SingleDefect(amplitude=amplitude_mm * 1e-3, wavelength=wavelength)
 
 
-def _method_options(func: Callable[..., Any]) -> Callable[..., Any]:
-    """Add ``--method`` and ``--dt`` to a command."""
+def _method_options(func: Callable[..., Any], stochastic: bool = False) -> Callable[..., Any]:
+    """Add ``--method`` and ``--dt`` to a command (``stochastic``: also the search method)."""
     func = click.option(
         "--dt",
         type=float,
@@ -249,13 +250,25 @@ def _method_options(func: Callable[..., Any]) -> Callable[..., Any]:
         help="Time step of the fixed-step rk4 integrator (s). Default: chosen from the "
         "model's fastest dynamics (1 ms for the paper's vehicle).",
     )(func)
+    choices = ["rk4", "dopri5"] + (["stochastic"] if stochastic else [])
+    text = (
+        "Integrator: classical fixed-step Runge-Kutta (the paper's) or adaptive "
+        "Dormand-Prince 5(4)."
+    )
+    if stochastic:
+        text = (
+            "rk4, dopri5: the single-defect method with that integrator (classical "
+            "fixed-step Runge-Kutta, the paper's, or adaptive Dormand-Prince 5(4)). "
+            "stochastic: run (with rk4) over a random irregular track instead and find the "
+            "lowest speed that breaks the acceptance-test instability criterion (EN 14363 "
+            "style)."
+        )
     func = click.option(
         "--method",
-        type=click.Choice(["rk4", "dopri5"]),
+        type=click.Choice(choices),
         default="rk4",
         show_default=True,
-        help="Integrator: classical fixed-step Runge-Kutta (the paper's) or adaptive "
-        "Dormand-Prince 5(4).",
+        help=text,
     )(func)
     return func
 
@@ -333,8 +346,11 @@ Which command answers which question:
   eigen           How well damped is the hunting mode of the linearised
                   model at each speed, and at what frequency does it hunt?
   critical-speed  Above which speed does the vehicle hunt?  Nonlinear
-                  (simulation, the paper's method) and linear (eigenvalues).
+                  (simulation, the paper's method) and linear (eigenvalues);
+                  --method stochastic: irregular track, EN 14363 criterion.
   parameters      Which vehicle parameters exist, with values and units.
+  spectrogram     Which frequencies dominate a measured signal, and when?
+                  (short-time Fourier transform of a CSV channel)
 
 \b
 Units: speeds in km/h; defect amplitudes and displacements in mm;
@@ -394,6 +410,30 @@ def main() -> None:
     help="Instead of a track defect, start with all four wheelsets displaced "
     "laterally by this much (mm) on ideal track.",
 )
+@click.option(
+    "--spectrum",
+    default=None,
+    metavar="NAME",
+    help="Instead of a track defect, run over a random lateral alignment following this "
+    "track spectrum (german-low, german-high, fra-1 ... fra-6), long enough for the whole "
+    "run, and report the acceptance-test instability criterion.",
+)
+@click.option(
+    "--seed",
+    type=click.IntRange(min=0),
+    default=1,
+    show_default=True,
+    help="With --spectrum: seed of the random track (same seed, same track).",
+)
+@click.option(
+    "--irregularity",
+    "irregularity_file",
+    type=click.Path(exists=True, dir_okay=False, path_type=Path),
+    metavar="FILE",
+    help="Instead of a track defect, run over this measured alignment (CSV with columns "
+    "'distance' and 'alignment', units [m] or [mm] in the header; shifted to start at "
+    "0 m and faded in and out over 20 m).",
+)
 @_method_options
 @click.option(
     "--output-dt",
@@ -425,6 +465,9 @@ def simulate(
     amplitude: float,
     wavelength: float,
     initial_displacement: float | None,
+    spectrum: str | None,
+    seed: int,
+    irregularity_file: Path | None,
     method: str,
     dt: float | None,
     output_dt: float | None,
@@ -442,6 +485,13 @@ def simulate(
     with its wheelsets offset on ideal track. Below the critical speed the
     motion decays back to the centre line; above it the leading wheelset
     settles on a hunting limit cycle (or derails beyond 25 mm).
+
+    \b
+    With --spectrum NAME (or --irregularity FILE) it runs over an irregular
+    track instead (the paper's excitation type (c)), each wheelset meeting it
+    in turn, and prints the acceptance-test instability criterion (100 m
+    sliding rms of the sum of guiding forces and of the bogie frame lateral
+    acceleration, band-passed f0 +/- 2 Hz, against their limits).
 
     Prints the run's status and the leading wheelset's peak and final
     lateral amplitude (mm); --csv and --png save the details.
@@ -462,6 +512,17 @@ def simulate(
             f"--initial-displacement cannot be combined with --{explicit[0]}: "
             "choose either a track defect or an initial displacement"
         )
+    track_given = (("--spectrum", spectrum), ("--irregularity", irregularity_file))
+    irregular = [flag for flag, value in track_given if value]
+    if len(irregular) == 2:
+        raise CliError("--spectrum cannot be combined with --irregularity: choose one track")
+    if irregular and (explicit or initial_displacement is not None):
+        other = f"--{explicit[0]}" if explicit else "--initial-displacement"
+        raise CliError(
+            f"{irregular[0]} cannot be combined with {other}: choose one excitation"
+        )
+    if ctx.get_parameter_source("seed") is click.core.ParameterSource.COMMANDLINE and not spectrum:
+        raise CliError("--seed only applies with --spectrum")
     vehicle = _build_vehicle(vehicle_file, sets)
 
     import numpy as np
@@ -473,6 +534,19 @@ def simulate(
         with _user_input():
             excitation: Any = InitialDisplacement(amplitude=initial_displacement * 1e-3)
         described = f"all wheelsets displaced by {initial_displacement:g} mm"
+    elif irregular:
+        from railhunt.cli.stochastic import measured_track
+        from railhunt.irregularity import track_irregularity
+
+        with _user_input(f"{irregular[0]}: "):
+            if spectrum:
+                length = min(max(speed / 3.6 * duration, 200.0), 1e5)
+                excitation = track_irregularity(spectrum, length=length, seed=seed)
+                described = f"{spectrum} irregularity, seed {seed}"
+            else:
+                excitation = measured_track(irregularity_file)
+                described = f"measured alignment {irregularity_file}"
+        described += f", {excitation.length:g} m, rms {excitation.rms * 1e3:.2f} mm"
     else:
         excitation = _single_defect(amplitude, wavelength)
         described = f"{amplitude:g} mm x {wavelength:g} m lateral bump at {excitation.start:g} m"
@@ -491,13 +565,28 @@ def simulate(
     y = np.abs(result["y_w1"]) * 1e3
     final = float(y[t >= t[-1] - 1.0].max())
     note = "max |y_w1| over the last 1 s"
-    if result.excitation_end > t[-1]:
+    if result.excitation_end > t[-1] and not irregular:
         note += "; the run ended before the last wheelset left the defect"
     click.echo(f"vehicle:    {vehicle.name}")
     click.echo(f"speed:      {speed:g} km/h, {method}, {t[-1]:g} s simulated")
     click.echo(f"excitation: {described}")
     click.echo(f"status:     {result.status} ({result.message})")
     click.echo(f"y_w1:       peak {y.max():.3f} mm, final amplitude {final:.3f} mm ({note})")
+    if irregular:
+        from railhunt.analysis.stochastic import assess
+
+        with _user_input():
+            a = assess(result, vehicle)
+        if a.distance.size:
+            click.echo(
+                f"criterion:  {a.verdict} (f0 {a.f0_hz:.2f} Hz; ΣY rms max "
+                f"{a.sum_y_rms.max() / 1e3:.2f} kN = {a.sum_y_ratio:.2f} x limit "
+                f"{a.sum_y_limit / 1e3:.2f} kN; bogie frame rms max "
+                f"{a.acceleration_rms.max():.2f} m/s^2 = {a.acceleration_ratio:.2f} x limit "
+                f"{a.acceleration_limit:.2f} m/s^2)"
+            )
+        else:
+            click.echo("criterion:  not evaluated (the run covers less than 100 m of track)")
 
     if csv_file is not None:
         with _user_input("cannot write --csv: "):
@@ -633,7 +722,41 @@ def _linear_line(linear: Any) -> str:
              "Step while bracketing the critical speed (km/h).")  # fmt: skip
 @_kmh_option("--tol", "tol_kmh", 1.0, 800.0,
              "Resolution of the bisection (km/h); at most --step.")  # fmt: skip
-@_method_options
+@functools.partial(_method_options, stochastic=True)
+@click.option(
+    "--spectrum",
+    default="german-high",
+    show_default=True,
+    metavar="NAME",
+    help="With --method stochastic: track spectrum of the lateral alignment: german-low, "
+    "german-high (German high-speed spectra, low/high disturbance) or fra-1 ... fra-6 "
+    "(US FRA track classes, 6 the best).",
+)
+@click.option(
+    "--seed",
+    type=click.IntRange(min=0),
+    default=1,
+    show_default=True,
+    help="With --method stochastic: seed of the random track (same seed, same track).",
+)
+@click.option(
+    "--track-length",
+    type=float,
+    default=2000.0,
+    show_default=True,
+    metavar="M",
+    callback=_number_range("m", 200.0, 1e5, low_open=False),
+    help="With --method stochastic: length of the irregular track run over at each speed (m).",
+)
+@click.option(
+    "--irregularity",
+    "irregularity_file",
+    type=click.Path(exists=True, dir_okay=False, path_type=Path),
+    metavar="FILE",
+    help="With --method stochastic: run over this measured alignment instead (CSV with "
+    "columns 'distance' and 'alignment', units [m] or [mm] in the header; shifted to "
+    "start at 0 m and faded in and out over 20 m).",
+)
 @click.option(
     "--json",
     "as_json",
@@ -649,6 +772,10 @@ def critical_speed(
     tol_kmh: float,
     method: str,
     dt: float | None,
+    spectrum: str,
+    seed: int,
+    track_length: float,
+    irregularity_file: Path | None,
     as_json: bool,
     vehicle_file: Path | None,
     sets: dict[str, float],
@@ -669,10 +796,54 @@ def critical_speed(
     usually higher: below it small disturbances die out, but a large enough
     disturbance can already throw the vehicle onto a hunting limit cycle,
     which is why the nonlinear value is the one that matters in service.
+
+    \b
+    Stochastic critical speed (--method stochastic, the paper's excitation
+    type (c)): at each trial speed the vehicle runs over a random irregular
+    track (--spectrum, --seed, --track-length) or a measured one
+    (--irregularity FILE); the acceptance-test instability criterion (EN 14363
+    style) compares the 100 m sliding rms of the sum of guiding forces and of
+    the bogie frame lateral acceleration, band-passed f0 +/- 2 Hz, with their
+    limits. The result is the lowest speed that breaks the criterion (km/h).
     """
+    ctx = click.get_current_context()
+    explicit = {
+        name
+        for name in ctx.params
+        if ctx.get_parameter_source(name) is click.core.ParameterSource.COMMANDLINE
+    }
+    track_opts = {"spectrum": "--spectrum", "seed": "--seed", "track_length": "--track-length",
+                  "irregularity_file": "--irregularity"}  # fmt: skip
+    if method == "stochastic":
+        for name, flag in (("amplitude", "--amplitude"), ("wavelength", "--wavelength")):
+            if name in explicit:
+                raise CliError(
+                    f"{flag} describes the single defect and cannot be combined with "
+                    "--method stochastic (which runs over an irregular track)"
+                )
+        if irregularity_file is not None:
+            for name in ("spectrum", "seed", "track_length"):
+                if name in explicit:
+                    raise CliError(
+                        f"{track_opts[name]} cannot be combined with --irregularity: the "
+                        "measured track replaces the random one"
+                    )
+    else:
+        given = [flag for name, flag in track_opts.items() if name in explicit]
+        if given:
+            raise CliError(f"{given[0]} only applies with --method stochastic")
     vehicle = _build_vehicle(vehicle_file, sets)
     if tol_kmh > step_kmh:
         raise CliError(f"--tol {tol_kmh:g} km/h is invalid: must be <= --step {step_kmh:g} km/h")
+    if method == "stochastic":
+        from railhunt.cli.stochastic import stochastic_critical_speed_command
+
+        stochastic_critical_speed_command(
+            vehicle, spectrum=spectrum, seed=seed, track_length=track_length,
+            irregularity_file=irregularity_file, start_kmh=start_kmh, step_kmh=step_kmh,
+            tol_kmh=tol_kmh, dt=dt, as_json=as_json,
+        )  # fmt: skip
+        return
 
     from railhunt.analysis.critical import critical_speed as run_critical_speed
     from railhunt.analysis.linear import linear_critical_speed
@@ -787,6 +958,7 @@ def _critical_json(
     vehicle: Any, excitation: Any, tol_kmh: float, result: Any, linear: Any
 ) -> dict[str, Any]:
     data = {
+        "method": "defect",
         "nonlinear_critical_speed_kmh": result.speed_kmh,
         "linear_critical_speed_kmh": linear.speed_kmh,
         "linear_hunting_frequency_hz": linear.frequency_hz,

@@ -5,4 +5,7 @@ One line per topic module, each of which decorates :func:`railhunt.cli.main`.
 
 from __future__ import annotations
 
-from railhunt.cli import bifurcation  # noqa: F401
+from railhunt.cli import (
+    bifurcation,  # noqa: F401
+    spectrogram,  # noqa: F401
+)

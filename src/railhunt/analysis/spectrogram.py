@@ -1,0 +1,286 @@
+"""Time-frequency analysis of a measured (or simulated) signal, like the paper's Fig. 9(a).
+
+The paper shows the short-time Fourier transform (STFT) of a measured car-body floor
+acceleration: a band around 10 Hz present almost all the time (car-body elastic mode),
+one around 1 Hz (rigid modes), and a section where the 10 Hz band grows strongly (car
+body shaking driven by hunting after the yaw damper blew off). :func:`stft` computes such
+a map and :func:`dominant_bands` reads the dominant frequency band off it over time.
+
+Conventions: Hann window of ``window`` seconds, 75 % overlap, mean removed per window,
+only windows that lie wholly inside the record (no zero padding at the ends); amplitudes
+are single-sided (a sine of amplitude A shows as about A at its frequency). The frequency
+resolution is ``1/window`` Hz.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from scipy import signal
+
+#: Names accepted for the time column (before any ``[unit]``), case-insensitive.
+TIME_NAMES = ("t", "time")
+
+
+def _base(header: str) -> str:
+    text = header.strip()
+    if text.endswith("]") and "[" in text:
+        text = text[: text.rindex("[")]
+    return text.strip()
+
+
+def read_channel(
+    path: str | os.PathLike[str], channel: str
+) -> tuple[np.ndarray, np.ndarray, str]:
+    """Read the time column and one channel of a CSV file with a header row.
+
+    The time column is called ``t`` or ``time`` (any unit suffix like ``t [s]``, in
+    seconds). ``channel`` matches a header exactly or without its ``[unit]`` suffix, so
+    ``y_w1`` finds ``y_w1 [m]`` in the CSV files of ``railhunt simulate --csv``.
+
+    Returns
+    -------
+    t : numpy.ndarray
+        Times (s).
+    y : numpy.ndarray
+        Channel values (the file's unit).
+    name : str
+        The matched header.
+    """
+    path = Path(path)
+    with path.open(newline="") as fh:
+        rows = [r for r in csv.reader(fh) if any(c.strip() for c in r)]
+    if not rows:
+        raise ValueError(f"{path}: the file is empty; expected a header row with a time column")
+    header = [h.strip() for h in rows[0]]
+    bases = [_base(h) for h in header]
+    listing = ", ".join(header)
+    time_idx = next((i for i, b in enumerate(bases) if b.lower() in TIME_NAMES), None)
+    if time_idx is None:
+        raise ValueError(
+            f"{path}: no time column (named 't' or 'time', in s); columns are: {listing}"
+        )
+    if channel in header:
+        idx = header.index(channel)
+    elif channel in bases:
+        idx = bases.index(channel)
+    else:
+        raise ValueError(f"{path}: no column {channel!r}; available columns: {listing}")
+    if idx == time_idx:
+        raise ValueError(f"{path}: --channel {channel!r} is the time column; choose a signal")
+    data = np.empty((len(rows) - 1, 2))
+    for r, row in enumerate(rows[1:], start=2):
+        for c, i in enumerate((time_idx, idx)):
+            cell = row[i].strip() if i < len(row) else ""
+            try:
+                data[r - 2, c] = float(cell)
+            except ValueError:
+                raise ValueError(
+                    f"{path}: line {r}: column {header[i]!r} value {cell!r} is not a number"
+                ) from None
+    if not np.all(np.isfinite(data)):
+        raise ValueError(f"{path}: the time and {header[idx]!r} columns must be finite numbers")
+    return data[:, 0], data[:, 1], header[idx]
+
+
+def check_uniform(t: np.ndarray, rtol: float = 1e-3) -> float:
+    """The sampling step (s) of ``t``; ValueError unless it is uniform within ``rtol``."""
+    if t.size < 2:
+        raise ValueError(f"the record has {t.size} sample(s): too short for a spectrogram")
+    dt = np.diff(t)
+    if np.any(dt <= 0):
+        k = int(np.argmax(dt <= 0))
+        raise ValueError(
+            f"time must increase strictly: t = {t[k + 1]:g} s (sample {k + 2}) follows "
+            f"t = {t[k]:g} s"
+        )
+    step = float(np.median(dt))
+    dev = np.abs(dt - step)
+    if np.max(dev) > rtol * step:
+        k = int(np.argmax(dev))
+        raise ValueError(
+            f"non-uniform sampling: the time step is {step:g} s but {dt[k]:g} s between "
+            f"t = {t[k]:g} s and {t[k + 1]:g} s (more than {rtol:.1%} off); resample the "
+            "record to a fixed step first"
+        )
+    return step
+
+
+@dataclass
+class Spectrogram:
+    """STFT amplitude map.
+
+    Attributes
+    ----------
+    times : numpy.ndarray
+        Centre time of each window (s), on the record's time axis.
+    frequencies : numpy.ndarray
+        Frequencies (Hz).
+    amplitude : numpy.ndarray
+        Single-sided amplitude, shape (frequencies, times), in the signal's unit.
+    window : float
+        Window length (s); the resolution is ``1/window`` Hz.
+    """
+
+    times: np.ndarray
+    frequencies: np.ndarray
+    amplitude: np.ndarray
+    window: float
+
+    @property
+    def resolution(self) -> float:
+        """Frequency bin width (Hz)."""
+        return float(self.frequencies[1] - self.frequencies[0])
+
+
+def stft(t: np.ndarray, y: np.ndarray, window: float = 2.0, overlap: float = 0.75) -> Spectrogram:
+    """Short-time Fourier transform of a uniformly sampled record.
+
+    Parameters
+    ----------
+    t, y : numpy.ndarray
+        Times (s) and values.
+    window : float
+        Window length (s); at least 8 samples, and the record must hold two windows.
+    overlap : float
+        Fraction of overlap of consecutive windows, in [0, 0.95].
+    """
+    step = check_uniform(t)
+    if not (math.isfinite(window) and window > 0):
+        raise ValueError(f"window = {window!r} s is invalid: must be finite and > 0")
+    if not (0.0 <= overlap <= 0.95):
+        raise ValueError(f"overlap = {overlap!r} is invalid: must be in [0, 0.95]")
+    fs = 1.0 / step
+    nperseg = int(round(window * fs))
+    if nperseg < 8:
+        raise ValueError(
+            f"window = {window:g} s holds only {nperseg} samples at {fs:g} Hz: "
+            "needs at least 8 (make --window longer)"
+        )
+    duration = t[-1] - t[0] + step
+    if y.size < 2 * nperseg:
+        raise ValueError(
+            f"the record is too short: {y.size} samples ({duration:g} s) but the "
+            f"spectrogram needs at least two windows of {window:g} s ({2 * nperseg} "
+            "samples); record longer or use a shorter --window"
+        )
+    noverlap = min(int(round(overlap * nperseg)), nperseg - 1)
+    f, tau, z = signal.stft(
+        y, fs=fs, window="hann", nperseg=nperseg, noverlap=noverlap, detrend="constant",
+        boundary=None, padded=False,
+    )  # fmt: skip
+    amp = 2.0 * np.abs(z)
+    amp[0] *= 0.5
+    return Spectrogram(times=t[0] + tau, frequencies=f, amplitude=amp, window=nperseg / fs)
+
+
+@dataclass
+class Band:
+    """A stretch of time over which the dominant frequency stays put.
+
+    Attributes
+    ----------
+    start, end : float
+        Centre times (s) of the first and last window of the stretch.
+    frequency : float
+        Median dominant frequency (Hz).
+    low, high : float
+        Band around it (Hz): where the amplitude stays above ``1/sqrt(2)`` of the peak
+        (half power), widest over the stretch.
+    amplitude : float
+        Largest peak amplitude over the stretch (signal unit).
+    """
+
+    start: float
+    end: float
+    frequency: float
+    low: float
+    high: float
+    amplitude: float
+
+
+def dominant_frequency_track(
+    spec: Spectrogram, fmin: float | None = None, fmax: float | None = None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Per window: dominant frequency, half-power band (low, high) and peak amplitude.
+
+    ``fmin`` defaults to the first bin above 0 Hz (the mean is not a vibration), ``fmax``
+    to the Nyquist frequency.
+    """
+    f = spec.frequencies
+    lo_f = f[1] if fmin is None else float(fmin)
+    hi_f = f[-1] if fmax is None else float(fmax)
+    if not (0 <= lo_f < hi_f):
+        raise ValueError(f"frequency range [{lo_f:g}, {hi_f:g}] Hz is invalid: need fmin < fmax")
+    sel = np.nonzero((f >= lo_f) & (f <= hi_f))[0]
+    if sel.size == 0:
+        raise ValueError(
+            f"no frequency bin in [{lo_f:g}, {hi_f:g}] Hz (bins every {spec.resolution:g} Hz "
+            f"up to {f[-1]:g} Hz)"
+        )
+    n = spec.times.size
+    peak_f, low, high, amp = (np.empty(n) for _ in range(4))
+    for k in range(n):
+        a = spec.amplitude[sel, k]
+        i = int(np.argmax(a))
+        half = a[i] / math.sqrt(2.0)
+        i0 = i
+        while i0 > 0 and a[i0 - 1] >= half:
+            i0 -= 1
+        i1 = i
+        while i1 < a.size - 1 and a[i1 + 1] >= half:
+            i1 += 1
+        peak_f[k], low[k], high[k], amp[k] = f[sel[i]], f[sel[i0]], f[sel[i1]], a[i]
+    return peak_f, low, high, amp
+
+
+def dominant_bands(
+    spec: Spectrogram, fmin: float | None = None, fmax: float | None = None
+) -> list[Band]:
+    """Stretches of time with the same dominant frequency (within one bin)."""
+    peak_f, low, high, amp = dominant_frequency_track(spec, fmin, fmax)
+    res = spec.resolution
+    bands: list[Band] = []
+    start = 0
+    for k in range(1, peak_f.size + 1):
+        if k == peak_f.size or abs(peak_f[k] - np.median(peak_f[start:k])) > res * 1.01:
+            seg = slice(start, k)
+            bands.append(Band(
+                start=float(spec.times[start]), end=float(spec.times[k - 1]),
+                frequency=float(np.median(peak_f[seg])), low=float(np.min(low[seg])),
+                high=float(np.max(high[seg])), amplitude=float(np.max(amp[seg])),
+            ))  # fmt: skip
+            start = k
+    return bands
+
+
+def plot_spectrogram(
+    spec: Spectrogram, path: str | os.PathLike[str], title: str = "", unit: str = "",
+    bands: list[Band] | None = None, fmax: float | None = None,
+) -> Path:  # fmt: skip
+    """Draw the STFT amplitude map (like the paper's Fig. 9(a)) to a PNG file."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    path = Path(path)
+    fig, ax = plt.subplots(figsize=(9, 4.5), layout="constrained")
+    mesh = ax.pcolormesh(spec.times, spec.frequencies, spec.amplitude, shading="nearest",
+                         cmap="jet")  # fmt: skip
+    fig.colorbar(mesh, ax=ax, label=f"amplitude{f' ({unit})' if unit else ''}")
+    for b in bands or []:
+        ax.plot([b.start, b.end], [b.frequency, b.frequency], color="white", lw=1.5, ls="--")
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel("frequency (Hz)")
+    if fmax is not None:
+        ax.set_ylim(0, fmax)
+    ax.set_title(title or "short-time Fourier transform")
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path

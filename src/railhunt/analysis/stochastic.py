@@ -1,0 +1,398 @@
+"""Instability criterion of the acceptance test (EN 14363 style) on irregular track.
+
+The paper's excitation type (c): run at constant speed over a stochastic (or measured)
+track irregularity and apply the criteria of the vehicle acceptance test. Two criteria,
+as in EN 14363:2005 (Sec. 5.5.2.2 / Annex on the stability assessment) and UIC 518
+(the "normal" and the "simplified" measuring method):
+
+* **Sum of guiding forces** ΣY of each wheelset (the lateral force it exerts on the track,
+  channel ``SY_wj`` of :mod:`railhunt.channels`), band-pass filtered ``f0 ± 2 Hz`` around
+  the instability frequency ``f0``, sliding rms over 100 m of track in steps of 10 m,
+  against ``(ΣY)_lim,rms = (10 kN + 2*Q0/3) / 2`` with ``Q0`` the static wheel load:
+  half the Prud'homme limit (``α = 1``, passenger vehicles).
+* **Bogie frame lateral acceleration** ÿ+ above each wheelset (``ddy_t ± l1*ddpsi_t``),
+  band-pass filtered ``f0 ± 2 Hz``, sliding rms over 100 m in steps of 10 m, against
+  ``ÿ+_lim,rms = (12 - M_b/5) / 2`` m/s² with ``M_b`` the bogie mass in t (here bogie
+  frame plus its two wheelsets, ``M_t + 2*M_w``).
+
+Sources: EN 14363:2005 *Railway applications - Testing for the acceptance of running
+characteristics of railway vehicles*, stability criteria (ΣY filtered f0 ± 2 Hz, sliding
+rms; limits half the peak limits ``10 + P0/3`` kN, ``P0 = 2*Q0`` the axle load, and
+``12 - M+/5`` m/s²); the same table is reproduced in the GENSYS course notes "Acceptance
+test according to UIC 518 and EN 14363" (gensys.se/course/UIC518_tests.html). The filter
+is a 4th-order Butterworth band-pass applied forwards and backwards (zero phase); the
+standard fixes the pass band, not the filter order.
+
+The instability frequency ``f0`` is, unless given, the frequency of the largest peak of
+the Welch PSD of the leading wheelset's ΣY between 0.5 Hz and 15 Hz (the hunting mode of
+a bogie vehicle lies in 1-10 Hz); the pass band's lower edge is kept at 0.3 Hz or above.
+
+:func:`stochastic_critical_speed` then searches the lowest speed at which either rms
+exceeds its limit, stepping and bisecting like :func:`railhunt.critical_speed`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy import signal
+
+from railhunt.irregularity import TrackIrregularity, track_irregularity
+from railhunt.model import Model
+from railhunt.simulation import SimulationResult, simulate
+from railhunt.track import SampledTrack
+from railhunt.vehicle import Vehicle
+
+#: Length of the sliding rms window and its step (m), EN 14363.
+WINDOW_LENGTH = 100.0
+WINDOW_STEP = 10.0
+#: Half width of the band-pass around the instability frequency (Hz), EN 14363.
+HALF_BAND = 2.0
+#: Where f0 is looked for (Hz).
+F0_SEARCH = (0.5, 15.0)
+
+STABLE, UNSTABLE = "stable", "unstable"
+
+
+def sum_y_limit(vehicle: Vehicle) -> float:
+    """``(ΣY)_lim,rms = (10 kN + 2*Q0/3) / 2`` in N, ``Q0 = vehicle.N`` the static wheel load."""
+    return 0.5 * (10e3 + 2.0 * vehicle.N / 3.0)
+
+
+def bogie_mass(vehicle: Vehicle) -> float:
+    """Bogie mass ``M_t + 2*M_w`` (kg): frame and its two wheelsets."""
+    return vehicle.M_t + 2.0 * vehicle.M_w
+
+
+def acceleration_limit(vehicle: Vehicle) -> float:
+    """``ÿ+_lim,rms = (12 - M_b/5) / 2`` in m/s², ``M_b`` the bogie mass in t."""
+    return 0.5 * (12.0 - bogie_mass(vehicle) / 1000.0 / 5.0)
+
+
+@dataclass
+class Assessment:
+    """The instability criterion evaluated on one run.
+
+    Attributes
+    ----------
+    speed_kmh : float
+        Speed of the run (km/h).
+    f0_hz : float
+        Instability frequency used for the band-pass (Hz).
+    distance : numpy.ndarray
+        Track position of the leading wheelset at the centre of each 100 m window (m).
+    sum_y_rms : numpy.ndarray
+        Sliding rms of the band-passed ΣY (N), shape (windows, 4 wheelsets).
+    acceleration_rms : numpy.ndarray
+        Sliding rms of the band-passed bogie frame lateral acceleration above each
+        wheelset (m/s²), shape (windows, 4).
+    sum_y_limit, acceleration_limit : float
+        The limits (N, m/s²).
+    status : str
+        Integrator status of the run (``"derailed"`` counts as unstable).
+    """
+
+    speed_kmh: float
+    f0_hz: float
+    distance: np.ndarray
+    sum_y_rms: np.ndarray
+    acceleration_rms: np.ndarray
+    sum_y_limit: float
+    acceleration_limit: float
+    status: str = "ok"
+
+    @property
+    def sum_y_ratio(self) -> float:
+        """Largest sliding rms of ΣY over its limit (> 1: criterion exceeded)."""
+        return _max_ratio(self.sum_y_rms, self.sum_y_limit)
+
+    @property
+    def acceleration_ratio(self) -> float:
+        """Largest sliding rms of the bogie acceleration over its limit."""
+        return _max_ratio(self.acceleration_rms, self.acceleration_limit)
+
+    @property
+    def unstable(self) -> bool:
+        """True when either rms exceeds its limit, or the run derailed or diverged."""
+        if self.status != "ok":
+            return True
+        return self.sum_y_ratio > 1.0 or self.acceleration_ratio > 1.0
+
+    @property
+    def verdict(self) -> str:
+        """``"unstable"`` or ``"stable"``."""
+        return UNSTABLE if self.unstable else STABLE
+
+
+def _max_ratio(values: np.ndarray, limit: float) -> float:
+    return float(np.max(values) / limit) if values.size else math.nan
+
+
+def dominant_frequency(
+    t: np.ndarray, y: np.ndarray, band: tuple[float, float] = F0_SEARCH
+) -> float:
+    """Frequency (Hz) of the largest Welch PSD peak of ``y(t)`` within ``band``."""
+    fs = 1.0 / float(np.median(np.diff(t)))
+    nperseg = min(y.size, int(round(8.0 * fs)))  # 0.125 Hz resolution where possible
+    f, p = signal.welch(y - np.mean(y), fs=fs, nperseg=nperseg)
+    m = (f >= band[0]) & (f <= band[1])
+    if not np.any(m) or not np.any(p[m] > 0):
+        return math.nan
+    return float(f[m][np.argmax(p[m])])
+
+
+def band_pass(y: np.ndarray, fs: float, f0: float, half_band: float = HALF_BAND) -> np.ndarray:
+    """Zero-phase 4th-order Butterworth band-pass ``f0 ± half_band`` (Hz) of samples at ``fs``."""
+    lo = max(f0 - half_band, 0.3)
+    hi = min(f0 + half_band, 0.45 * fs)
+    if not lo < hi:
+        raise ValueError(f"f0 = {f0!r} Hz is invalid: the pass band is empty at {fs:g} Hz")
+    sos = signal.butter(4, [lo, hi], btype="bandpass", fs=fs, output="sos")
+    return signal.sosfiltfilt(sos, y, axis=0)
+
+
+def sliding_rms(
+    s: np.ndarray, y: np.ndarray, window: float = WINDOW_LENGTH, step: float = WINDOW_STEP
+) -> tuple[np.ndarray, np.ndarray]:
+    """Rms of ``y`` over windows of ``window`` metres of ``s`` every ``step`` metres.
+
+    Parameters
+    ----------
+    s : numpy.ndarray
+        Increasing track positions (m) of the samples.
+    y : numpy.ndarray
+        Samples, shape (n,) or (n, channels).
+
+    Returns
+    -------
+    centres : numpy.ndarray
+        Window centres (m).
+    rms : numpy.ndarray
+        Rms per window (and channel).
+    """
+    y2 = np.asarray(y, dtype=np.float64)
+    flat = y2.ndim == 1
+    if flat:
+        y2 = y2[:, None]
+    n_win = int(math.floor((s[-1] - s[0] - window) / step + 1e-9)) + 1 if s.size else 0
+    if n_win <= 0:
+        empty = np.empty((0,) + y2.shape[1:])
+        return np.empty(0), empty[:, 0] if flat else empty
+    cum = np.vstack([np.zeros((1, y2.shape[1])), np.cumsum(y2**2, axis=0)])
+    starts = s[0] + step * np.arange(n_win)
+    i0 = np.searchsorted(s, starts, side="left")
+    i1 = np.searchsorted(s, starts + window, side="right")
+    count = np.maximum(i1 - i0, 1)[:, None]
+    rms = np.sqrt((cum[i1] - cum[i0]) / count)
+    return starts + 0.5 * window, rms[:, 0] if flat else rms
+
+
+def assess(
+    result: SimulationResult, vehicle: Vehicle, f0_hz: float | None = None,
+    window: float = WINDOW_LENGTH, step: float = WINDOW_STEP,
+) -> Assessment:  # fmt: skip
+    """Evaluate the instability criterion on a simulated run.
+
+    Parameters
+    ----------
+    result : SimulationResult
+        A run with the derived channels ``SY_w1..4``, ``ddy_t1/2``, ``ddpsi_t1/2``
+        (every run of :func:`railhunt.simulate` has them), sampled uniformly in time.
+    vehicle : Vehicle
+        The vehicle (static wheel load, bogie mass, ``l1``).
+    f0_hz : float, optional
+        Instability frequency (Hz); default the dominant frequency of ``SY_w1``.
+    window, step : float
+        Sliding window length and step (m); EN 14363: 100 m and 10 m.
+
+    Returns
+    -------
+    Assessment
+    """
+    t = result.t
+    fs = 1.0 / float(np.median(np.diff(t)))
+    sum_y = np.column_stack([result[f"SY_w{j}"] for j in range(1, 5)])
+    l1 = vehicle.l1
+    acc = np.column_stack([
+        result["ddy_t1"] + l1 * result["ddpsi_t1"], result["ddy_t1"] - l1 * result["ddpsi_t1"],
+        result["ddy_t2"] + l1 * result["ddpsi_t2"], result["ddy_t2"] - l1 * result["ddpsi_t2"],
+    ])  # fmt: skip
+    f0 = dominant_frequency(t, sum_y[:, 0]) if f0_hz is None else float(f0_hz)
+    s = result.speed * t
+    if not math.isfinite(f0) or t.size < 32:
+        centres = np.empty(0)
+        rms_y = rms_a = np.empty((0, 4))
+    else:
+        centres, rms_y = sliding_rms(s, band_pass(sum_y, fs, f0), window, step)
+        _, rms_a = sliding_rms(s, band_pass(acc, fs, f0), window, step)
+    return Assessment(
+        speed_kmh=result.speed_kmh, f0_hz=f0, distance=centres, sum_y_rms=rms_y,
+        acceleration_rms=rms_a, sum_y_limit=sum_y_limit(vehicle),
+        acceleration_limit=acceleration_limit(vehicle), status=result.status,
+    )  # fmt: skip
+
+
+#: Public name of :func:`assess` in the ``railhunt`` namespace.
+assess_stability = assess
+
+
+def run_on_track(
+    vehicle: Vehicle, speed_kmh: float, track: SampledTrack, model: Model | None = None,
+    dt: float | None = None, output_dt: float = 2e-3, f0_hz: float | None = None,
+) -> tuple[SimulationResult, Assessment]:  # fmt: skip
+    """Run over the whole irregular section and assess the criterion.
+
+    The run lasts until the last wheelset leaves the section; output every ``output_dt``
+    seconds (2 ms: 250 Hz, far above the pass band).
+    """
+    model = model or Model(vehicle)
+    speed = speed_kmh / 3.6
+    duration = (track.end() + model.wheelset_offsets()[-1]) / speed
+    res = simulate(
+        vehicle, speed_kmh, duration=duration, excitation=track, dt=dt,
+        output_dt=output_dt, model=model,
+    )  # fmt: skip
+    return res, assess(res, vehicle, f0_hz=f0_hz)
+
+
+@dataclass
+class StochasticCriticalSpeedResult:
+    """Outcome of :func:`stochastic_critical_speed`.
+
+    Attributes
+    ----------
+    speed_kmh : float
+        Stochastic critical speed: the lowest speed (km/h) at which the criterion is
+        exceeded, within ``tol_kmh``; NaN when the search did not bracket a change.
+    highest_stable_kmh : float
+        Highest speed below it at which the criterion is met (km/h).
+    trials : list of Assessment
+        Every speed tried, in order.
+    bracketed : bool
+        True when a stable and an unstable speed were found.
+    irregularity : SampledTrack
+        The track run over at every speed.
+    """
+
+    speed_kmh: float
+    highest_stable_kmh: float
+    trials: list[Assessment] = field(default_factory=list)
+    bracketed: bool = True
+    irregularity: SampledTrack | None = None
+
+
+def stochastic_critical_speed(
+    vehicle: Vehicle,
+    irregularity: SampledTrack | None = None,
+    start_kmh: float = 300.0,
+    step_kmh: float = 10.0,
+    tol_kmh: float = 1.0,
+    min_kmh: float = 20.0,
+    max_kmh: float = 800.0,
+    dt: float | None = None,
+    creep_law: str = "heuristic",
+    f0_hz: float | None = None,
+    progress: Callable[[Assessment], None] | None = None,
+) -> StochasticCriticalSpeedResult:
+    """Lowest speed at which the acceptance-test instability criterion is exceeded.
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        Vehicle description.
+    irregularity : SampledTrack, optional
+        Track run over at every trial speed (the same track each time). Default:
+        ``track_irregularity("german-high", length=2000, dx=0.25, seed=1)``.
+    start_kmh, step_kmh, tol_kmh : float
+        First speed, bracketing step and final resolution (km/h).
+    min_kmh, max_kmh : float
+        Search limits (km/h).
+    dt : float, optional
+        RK4 step (s); default :func:`railhunt.simulation.auto_step`.
+    creep_law : str
+        See :class:`railhunt.model.Model`.
+    f0_hz : float, optional
+        Fixed instability frequency (Hz); default estimated from each run.
+    progress : callable, optional
+        Called with each :class:`Assessment` as it finishes.
+
+    Returns
+    -------
+    StochasticCriticalSpeedResult
+    """
+    if irregularity is None:
+        irregularity = track_irregularity("german-high", length=2000.0, dx=0.25, seed=1)
+    if not isinstance(irregularity, SampledTrack):
+        raise ValueError(
+            f"irregularity = {type(irregularity).__name__} is invalid: must be a SampledTrack "
+            "(railhunt.track_irregularity or railhunt.load_irregularity)"
+        )
+    for name, value in (("start_kmh", start_kmh), ("step_kmh", step_kmh), ("tol_kmh", tol_kmh),
+                        ("min_kmh", min_kmh), ("max_kmh", max_kmh)):  # fmt: skip
+        if not (math.isfinite(value) and value > 0):
+            raise ValueError(f"{name} = {value!r} km/h is invalid: must be finite and > 0")
+    if not (min_kmh <= start_kmh <= max_kmh):
+        raise ValueError(
+            f"start_kmh = {start_kmh} km/h is invalid: must lie in [min_kmh, max_kmh] = "
+            f"[{min_kmh}, {max_kmh}] km/h"
+        )
+    if tol_kmh > step_kmh:
+        raise ValueError(f"tol_kmh = {tol_kmh} km/h is invalid: must be <= step_kmh = {step_kmh}")
+    if f0_hz is not None and not (math.isfinite(f0_hz) and 0.5 <= f0_hz <= 50.0):
+        raise ValueError(f"f0_hz = {f0_hz!r} Hz is invalid: must be finite and in [0.5, 50] Hz")
+    model = Model(vehicle, creep_law=creep_law)
+    trials: list[Assessment] = []
+
+    def unstable(speed_kmh: float) -> bool:
+        _, a = run_on_track(vehicle, speed_kmh, irregularity, model=model, dt=dt, f0_hz=f0_hz)
+        trials.append(a)
+        if progress is not None:
+            progress(a)
+        return a.unstable
+
+    speed = start_kmh
+    lo = hi = math.nan
+    if not unstable(speed):
+        lo = speed
+        while speed + step_kmh <= max_kmh + 1e-9:
+            speed += step_kmh
+            if unstable(speed):
+                hi = speed
+                break
+            lo = speed
+    else:
+        hi = speed
+        while speed - step_kmh >= min_kmh - 1e-9:
+            speed -= step_kmh
+            if not unstable(speed):
+                lo = speed
+                break
+            hi = speed
+    if math.isnan(lo) or math.isnan(hi):
+        return StochasticCriticalSpeedResult(math.nan, lo, trials, False, irregularity)
+    while hi - lo > tol_kmh + 1e-9:
+        mid = lo + tol_kmh * round((hi - lo) / (2 * tol_kmh))
+        mid = min(max(mid, lo + tol_kmh), hi - tol_kmh)
+        if unstable(mid):
+            hi = mid
+        else:
+            lo = mid
+    return StochasticCriticalSpeedResult(hi, lo, trials, True, irregularity)
+
+
+__all__ = [
+    "Assessment",
+    "StochasticCriticalSpeedResult",
+    "TrackIrregularity",
+    "acceleration_limit",
+    "assess",
+    "assess_stability",
+    "band_pass",
+    "dominant_frequency",
+    "sliding_rms",
+    "stochastic_critical_speed",
+    "sum_y_limit",
+]

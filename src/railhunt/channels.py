@@ -1,0 +1,84 @@
+"""Derived output channels: wheel/rail guiding forces and body accelerations.
+
+Computed after a run from the stored states through the model's own compiled functions
+(:func:`railhunt.model.rhs` for the accelerations, :func:`railhunt.model.wheelset_forces`
+for the forces), so no equation is written twice.
+
+Channels (SI units)
+-------------------
+``SY_w1`` ... ``SY_w4``
+    Sum of the guiding forces of wheelset *j*, ΣY = Y_left + Y_right (N): the total
+    lateral force the wheelset exerts on the track (the "track-shifting force" of
+    EN 14363), + toward +y (left). It is minus the lateral force of the rails on the
+    wheelset returned by ``wheelset_forces``: creep forces after saturation plus the
+    lateral components of the normal loads (gravitational stiffness).
+``ddy_t1``, ``ddy_t2``
+    Lateral acceleration of the front and rear bogie frame at its centre (m/s^2).
+``ddpsi_t1``, ``ddpsi_t2``
+    Yaw acceleration of the bogie frames (rad/s^2); the lateral acceleration of a frame
+    above its wheelsets is ``ddy_t +/- l1 * ddpsi_t``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from railhunt import track as _track
+from railhunt.model import WR_OFFSET, rhs, wheelset_forces
+from railhunt.suspension import DOF_NAMES
+
+#: Names of the derived channels, in the column order of :func:`derived_channels`.
+CHANNEL_NAMES: tuple[str, ...] = (
+    "SY_w1", "SY_w2", "SY_w3", "SY_w4", "ddy_t1", "ddy_t2", "ddpsi_t1", "ddpsi_t2",
+)  # fmt: skip
+#: Unit of each derived channel.
+CHANNEL_UNITS = {"SY": "N", "ddy": "m/s^2", "ddpsi": "rad/s^2"}
+_ACC = np.array([DOF_NAMES.index(n) for n in ("y_t1", "y_t2", "psi_t1", "psi_t2")])
+
+
+@njit(cache=True)
+def _derived(t, x, v, lin, bd, dd, dpar, wr, trk, trs, acc_idx):
+    nq = 17
+    n = t.shape[0]
+    res = np.empty((n, 8))
+    out = np.empty(x.shape[1])
+    for i in range(n):
+        xi = x[i]
+        rhs(t[i], xi, v, lin, bd, dd, dpar, wr, trk, trs, out)
+        for j in range(4):
+            iy = 9 + 2 * j
+            ip = iy + 1
+            yr, slope = _track.alignment(v * t[i] - wr[WR_OFFSET + j], trk, trs)
+            fy, _ = wheelset_forces(
+                xi[iy] - yr, xi[nq + iy], xi[ip], xi[ip] - slope, xi[nq + ip], v, wr
+            )
+            res[i, j] = -fy
+        for k in range(4):
+            res[i, 4 + k] = out[nq + acc_idx[k]]
+    return res
+
+
+def derived_channels(
+    t: np.ndarray, x: np.ndarray, args: tuple
+) -> dict[str, np.ndarray]:
+    """Guiding forces and bogie accelerations along a run.
+
+    Parameters
+    ----------
+    t : numpy.ndarray
+        Times (s).
+    x : numpy.ndarray
+        States, one row per time.
+    args : tuple
+        The model arguments of the run (:meth:`railhunt.model.Model.args`).
+
+    Returns
+    -------
+    dict
+        Channel name -> values (see the module docstring for names and units).
+    """
+    t = np.ascontiguousarray(t, dtype=np.float64)
+    x = np.ascontiguousarray(x, dtype=np.float64)
+    res = _derived(t, x, *args, _ACC)
+    return {name: res[:, k].copy() for k, name in enumerate(CHANNEL_NAMES)}

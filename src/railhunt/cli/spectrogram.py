@@ -1,0 +1,145 @@
+"""``railhunt spectrogram``: STFT of a measured signal and its dominant frequency band."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import click
+
+from railhunt.cli import (
+    CliError,
+    _check_outputs,
+    _json_safe,
+    _number_range,
+    _stdout_console,
+    _user_input,
+    main,
+)
+
+
+@main.command(short_help="STFT of a measured signal: dominant frequency band over time.")
+@click.argument("csv_file", metavar="FILE.csv", type=click.Path(dir_okay=False, path_type=Path))
+@click.option(
+    "--channel",
+    required=True,
+    metavar="NAME",
+    help="Column to analyse (its header, with or without a '[unit]' suffix), e.g. y_w1.",
+)
+@click.option(
+    "--window",
+    type=float,
+    default=2.0,
+    show_default=True,
+    metavar="S",
+    callback=_number_range("s", 0.0, 1e4),
+    help="Length of each STFT window (s); the frequency resolution is 1/window Hz.",
+)
+@click.option(
+    "--fmin",
+    type=float,
+    default=None,
+    metavar="HZ",
+    callback=_number_range("Hz", 0.0, 1e6, low_open=False, optional=True),
+    help="Lowest frequency searched for the dominant band (Hz). Default: the first bin "
+    "above 0 Hz.",
+)
+@click.option(
+    "--fmax",
+    type=float,
+    default=None,
+    metavar="HZ",
+    callback=_number_range("Hz", 0.0, 1e6, optional=True),
+    help="Highest frequency searched (and plotted) (Hz). Default: the Nyquist frequency.",
+)
+@click.option(
+    "--png",
+    "png_file",
+    type=click.Path(dir_okay=False, path_type=Path),
+    metavar="FILE",
+    help="Draw the STFT amplitude map (time vs frequency, like the paper's Fig. 9a).",
+)
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of a table.")
+def spectrogram(
+    csv_file: Path,
+    channel: str,
+    window: float,
+    fmin: float | None,
+    fmax: float | None,
+    png_file: Path | None,
+    as_json: bool,
+) -> None:
+    """Short-time Fourier transform of one channel of a CSV record.
+
+    \b
+    FILE.csv has a header row, a time column named 't' or 'time' (s, e.g.
+    't [s]') and the signal in the column given by --channel (any unit, e.g.
+    a car-body or bogie-frame acceleration in m/s^2, or a channel of
+    'railhunt simulate --csv'). The record must be uniformly sampled and hold
+    at least two windows. Hann windows of --window s overlap by 75 %.
+
+    \b
+    Prints the dominant frequency band over time: stretches where the
+    frequency of the largest STFT amplitude stays within one bin, each with
+    its half-power band and peak amplitude. A hunting bogie shows up as a
+    steady band at the hunting frequency (a few Hz); after a yaw damper blows
+    off it jumps higher (the paper's Fig. 8-9).
+    """
+    _check_outputs(png=png_file)
+    if fmin is not None and fmax is not None and fmin >= fmax:
+        raise CliError(f"--fmin {fmin:g} Hz is invalid: must be below --fmax {fmax:g} Hz")
+    if not csv_file.exists():
+        raise CliError(f"FILE.csv {csv_file}: no such file")
+    from railhunt.analysis.spectrogram import (
+        dominant_bands,
+        plot_spectrogram,
+        read_channel,
+        stft,
+    )
+
+    with _user_input():
+        t, y, name = read_channel(csv_file, channel)
+    with _user_input(f"{csv_file}: "):
+        spec = stft(t, y, window=window)
+        bands = dominant_bands(spec, fmin=fmin, fmax=fmax)
+    unit = name[name.rindex("[") + 1 : -1] if name.endswith("]") and "[" in name else ""
+    if as_json:
+        data = {
+            "file": str(csv_file),
+            "channel": name,
+            "sampling_hz": 1.0 / float(t[1] - t[0]),
+            "window_s": spec.window,
+            "resolution_hz": spec.resolution,
+            "bands": [
+                {"start_s": b.start, "end_s": b.end, "frequency_hz": b.frequency,
+                 "low_hz": b.low, "high_hz": b.high, "amplitude": b.amplitude}
+                for b in bands
+            ],  # fmt: skip
+        }
+        click.echo(json.dumps(_json_safe(data), allow_nan=False))
+    else:
+        from rich.markup import escape
+        from rich.table import Table
+
+        title = (f"dominant frequency of {escape(name)} in {escape(csv_file.name)} "
+                 f"(window {spec.window:g} s, bins {spec.resolution:.3g} Hz)")  # fmt: skip
+        table = Table(title=title)
+        for head in ("from (s)", "to (s)", "frequency (Hz)", "band (Hz)",
+                     f"peak amplitude{f' ({unit})' if unit else ''}"):  # fmt: skip
+            table.add_column(head, justify="right")
+        for b in bands:
+            table.add_row(f"{b.start:.2f}", f"{b.end:.2f}", f"{b.frequency:.3g}",
+                          f"{b.low:.3g}-{b.high:.3g}", f"{b.amplitude:.4g}")  # fmt: skip
+        _stdout_console().print(table)
+        strongest = max(bands, key=lambda b: b.amplitude)
+        _stdout_console().print(
+            f"strongest: {strongest.frequency:.3g} Hz between {strongest.start:.2f} s and "
+            f"{strongest.end:.2f} s (peak amplitude {strongest.amplitude:.4g}"
+            f"{f' {unit}' if unit else ''})"
+        )
+    if png_file is not None:
+        with _user_input("cannot write --png: "):
+            plot_spectrogram(spec, png_file, title=f"STFT of {name}", unit=unit, bands=bands,
+                             fmax=fmax)  # fmt: skip
+        if not as_json:
+            click.echo(f"png: {png_file}")

@@ -1,0 +1,181 @@
+"""``railhunt critical-speed --method stochastic``: the run and its report.
+
+The option parsing lives with the ``critical-speed`` command in :mod:`railhunt.cli`; this
+module builds the irregular track, runs :func:`railhunt.analysis.stochastic.
+stochastic_critical_speed` and prints the table or the JSON object.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import math
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import Any
+
+import click
+
+from railhunt.cli import (
+    _json_safe,
+    _linear_line,
+    _show_progress,
+    _stdout_console,
+    _user_input,
+)
+
+#: Fade-in and fade-out (m) applied to measured alignments on the command line.
+MEASURED_TAPER = 20.0
+
+
+def measured_track(path: Path) -> Any:
+    """The measured alignment of ``path``, starting at 0 m, faded in and out over 20 m
+    (or over half the record when it is shorter than 40 m)."""
+    from railhunt.irregularity import load_irregularity
+
+    raw = load_irregularity(path)
+    return load_irregularity(path, taper=min(MEASURED_TAPER, raw.length / 2))
+
+
+@contextlib.contextmanager
+def _progress() -> Iterator[Callable[[Any], None]]:
+    if not _show_progress():
+        yield lambda trial: None
+        return
+    from rich.console import Console
+    from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
+
+    columns = (SpinnerColumn(), TextColumn("{task.description}"), TimeElapsedColumn())
+    with Progress(*columns, console=Console(stderr=True), transient=True) as progress:
+        task = progress.add_task("stochastic critical speed: first run ...", total=None)
+
+        def on_trial(trial: Any) -> None:
+            text = ("linear stability analysis ..." if trial is None else
+                    f"stochastic critical speed: {trial.speed_kmh:g} km/h was {trial.verdict}")
+            progress.update(task, description=text)
+
+        yield on_trial
+
+
+def stochastic_critical_speed_command(
+    vehicle: Any,
+    spectrum: str,
+    seed: int,
+    track_length: float,
+    irregularity_file: Path | None,
+    start_kmh: float,
+    step_kmh: float,
+    tol_kmh: float,
+    dt: float | None,
+    as_json: bool,
+) -> None:
+    """Run the stochastic critical-speed search and report it (table or JSON)."""
+    from railhunt.analysis.linear import linear_critical_speed
+    from railhunt.analysis.stochastic import (
+        acceleration_limit,
+        bogie_mass,
+        stochastic_critical_speed,
+        sum_y_limit,
+    )
+    from railhunt.irregularity import track_irregularity
+
+    with _user_input("--irregularity: " if irregularity_file else "--spectrum: "):
+        if irregularity_file is not None:
+            track = measured_track(irregularity_file)
+        else:
+            track = track_irregularity(spectrum, length=track_length, seed=seed)
+    with _progress() as on_trial, _user_input():
+        result = stochastic_critical_speed(
+            vehicle, irregularity=track, start_kmh=start_kmh, step_kmh=step_kmh,
+            tol_kmh=tol_kmh, dt=dt, progress=on_trial,
+        )  # fmt: skip
+        on_trial(None)
+        linear = linear_critical_speed(vehicle)
+
+    if irregularity_file is not None:
+        described = f"measured alignment {irregularity_file}"
+    else:
+        described = f"{spectrum} spectrum, seed {seed}"
+    described += f", {track.length:g} m, rms {track.rms * 1e3:.2f} mm"
+    if as_json:
+        data = {
+            "method": "stochastic",
+            "stochastic_critical_speed_kmh": result.speed_kmh,
+            "highest_stable_speed_kmh": result.highest_stable_kmh,
+            "linear_critical_speed_kmh": linear.speed_kmh,
+            "linear_hunting_frequency_hz": linear.frequency_hz,
+            "linear_crossing_is_hunting_mode": bool(linear.is_hunting_mode),
+            "bracketed": bool(result.bracketed),
+            "tol_kmh": tol_kmh,
+            "vehicle": vehicle.name,
+            "irregularity": {
+                "spectrum": getattr(track, "spectrum", "measured"),
+                "seed": getattr(track, "seed", None),
+                "file": None if irregularity_file is None else str(irregularity_file),
+                "length_m": track.length,
+                "rms_mm": track.rms * 1e3,
+                "band_m": list(getattr(track, "band", (math.nan, math.nan))),
+            },
+            "criterion": {
+                "window_m": 100.0,
+                "step_m": 10.0,
+                "half_band_hz": 2.0,
+                "sum_y_limit_kn": sum_y_limit(vehicle) / 1e3,
+                "acceleration_limit_m_s2": acceleration_limit(vehicle),
+                "static_wheel_load_kn": vehicle.N / 1e3,
+                "bogie_mass_t": bogie_mass(vehicle) / 1e3,
+            },
+            "trials": [
+                {
+                    "speed_kmh": a.speed_kmh,
+                    "verdict": a.verdict,
+                    "f0_hz": a.f0_hz,
+                    "sum_y_rms_max_kn": float(a.sum_y_rms.max()) / 1e3 if a.sum_y_rms.size
+                    else None,
+                    "sum_y_ratio": a.sum_y_ratio,
+                    "acceleration_rms_max_m_s2": float(a.acceleration_rms.max())
+                    if a.acceleration_rms.size else None,
+                    "acceleration_ratio": a.acceleration_ratio,
+                    "status": a.status,
+                }
+                for a in result.trials
+            ],
+        }  # fmt: skip
+        click.echo(json.dumps(_json_safe(data), allow_nan=False))
+        return
+
+    from rich.table import Table
+
+    table = Table(title=f"stochastic critical speed trials of {vehicle.name} ({described})")
+    heads = ("#", "speed (km/h)", "verdict", "f0 (Hz)", "ΣY rms (kN)", "ΣY / limit",
+             "ÿ+ rms (m/s²)", "ÿ+ / limit", "note")  # fmt: skip
+    for head in heads:
+        table.add_column(head, justify="left" if head in ("verdict", "note") else "right")
+    for i, a in enumerate(result.trials, 1):
+        table.add_row(
+            str(i), f"{a.speed_kmh:g}", a.verdict, f"{a.f0_hz:.2f}",
+            f"{a.sum_y_rms.max() / 1e3:.2f}" if a.sum_y_rms.size else "n/a",
+            f"{a.sum_y_ratio:.2f}",
+            f"{a.acceleration_rms.max():.2f}" if a.acceleration_rms.size else "n/a",
+            f"{a.acceleration_ratio:.2f}", "" if a.status == "ok" else a.status,
+            style="red" if a.unstable else "green",
+        )  # fmt: skip
+    console = _stdout_console()
+    console.print(table)
+    console.print(
+        f"limits: ΣY rms {sum_y_limit(vehicle) / 1e3:.2f} kN (static wheel load "
+        f"{vehicle.N / 1e3:.2f} kN), bogie frame ÿ+ rms {acceleration_limit(vehicle):.2f} m/s² "
+        f"(bogie mass {bogie_mass(vehicle) / 1e3:.2f} t); 100 m sliding rms, f0 ± 2 Hz"
+    )
+    if result.bracketed:
+        console.print(
+            f"stochastic critical speed: {result.speed_kmh:g} km/h (lowest speed breaking "
+            f"the criterion; criterion met at {result.highest_stable_kmh:g} km/h, resolution "
+            f"{tol_kmh:g} km/h)"
+        )
+    else:
+        verdicts = {a.verdict for a in result.trials}
+        why = ("every trial speed up to 800 km/h met the criterion" if verdicts == {"stable"}
+               else "every trial speed down to 20 km/h broke the criterion")  # fmt: skip
+        console.print(f"stochastic critical speed: not found ({why})")
+    console.print(_linear_line(linear))
