@@ -26,6 +26,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "plot_bifurcation",
+    "plot_bifurcation_family",
     "plot_damper_velocity",
     "plot_hunting_frequency",
     "plot_root_locus",
@@ -349,4 +350,45 @@ def plot_damper_velocity(
     ax2.set_ylabel("damper velocity (m/s)")
     ax2.grid(True, alpha=0.3)
     ax2.legend(fontsize=8, loc="upper right")
+    return _save(fig, path)
+
+
+def plot_bifurcation_family(
+    family: list[tuple[float, BifurcationDiagram]],
+    path: str | os.PathLike[str],
+    parameter: str = "F_u",
+    unit: str = "kN",
+    scale: float = 1e-3,
+) -> Path:
+    """Bifurcation diagrams of a parameter family side by side, like the paper's Fig. 13.
+
+    One panel per member: amplitude of the leading wheelset (mm) against speed, stable
+    solid, unstable dashed, the Hopf point and the lowest fold marked, the type in the title.
+    """
+    n = len(family)
+    cols = min(n, 3)
+    rows = int(math.ceil(n / cols))
+    fig = _new_figure(4.2 * cols, 3.3 * rows)
+    for k, (value, d) in enumerate(family):
+        ax = fig.add_subplot(rows, cols, k + 1)
+        lo, hi = d.speed_range_kmh
+        hopf = d.hopf_speed_kmh
+        ax.plot([lo, min(hopf, hi)], [0, 0], "k-", lw=1.5)
+        if hopf < hi:
+            ax.plot([hopf, hi], [0, 0], "k--", lw=1)
+        for n_b, branch in enumerate(d.branches):
+            c = f"C{[0, 2, 4, 5][n_b % 4]}"
+            for first, last, stable in branch.segments():
+                sl = slice(first, last + 1)
+                ax.plot(branch.speed_kmh[sl], branch.amplitude[sl] * 1e3,
+                        "-" if stable else "--", color=c, lw=1.6 if stable else 1)  # fmt: skip
+        ax.plot([hopf], [0], "o", color="C3", ms=5)
+        ax.axvline(d.fold_speed_kmh, color="C1", lw=0.8, ls=":")
+        text = "no blow-off" if value >= 1e8 else f"{value * scale:g} {unit}"
+        ax.set_title(f"{parameter} = {text}: {d.hopf_type}", fontsize=9)
+        ax.set_xlim(lo, hi)
+        ax.set_ylim(bottom=-0.3)
+        ax.grid(True, alpha=0.3)
+        ax.set_xlabel("speed (km/h)", fontsize=8)
+        ax.set_ylabel("y_w1 amplitude (mm)", fontsize=8)
     return _save(fig, path)

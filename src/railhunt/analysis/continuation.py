@@ -39,7 +39,11 @@ from railhunt.model import N_STATE, Y_W1, Model
 from railhunt.vehicle import Vehicle
 
 HOPF_TYPES = ("subcritical", "supercritical-a", "supercritical-b")
+#: Smallest largest scaled state entry of an orbit (1e-2: 10 micrometres or 0.1 mm/s);
+#: below it the corrector has fallen onto the equilibrium.
+MIN_STATE = 1e-2
 __all__ = ["HOPF_TYPES", "BifurcationDiagram", "Branch", "Fold", "bifurcation_diagram",
+           "bifurcation_family",
            "classify_hopf"]
 
 
@@ -300,6 +304,12 @@ class _Tracer:
 
                 u_new, norm, it, ok, _ = newton(fun, jac_fun, u_pred, tol=1e-9, max_iter=8,
                                                 jac=np.vstack([jac, t_row]))  # fmt: skip
+                # Reject a corrector that strayed far from the predictor (it may have jumped
+                # to another branch) or fell onto the equilibrium, which solves the shooting
+                # equations for any period.
+                if ok and (np.linalg.norm(u_new - u_pred) > ds
+                           or np.max(np.abs(u_new[:-2])) < MIN_STATE):  # fmt: skip
+                    ok = False
                 if ok:
                     break
                 ds *= 0.5
@@ -570,3 +580,40 @@ def _seed_orbit(model: Model, shoot: Shooting, speed_kmh: float, amplitude: floa
     u = np.append(w, vs)
     lin = shoot.linearise(u)
     return u, shoot.orbit(u, norm, it, lin), lin
+
+
+def bifurcation_family(
+    vehicle: Vehicle,
+    values: list[float] | np.ndarray,
+    parameter: str = "F_u",
+    speed_range_kmh: tuple[float, float] = (200.0, 500.0),
+    **kwargs,
+) -> list[tuple[float, BifurcationDiagram]]:
+    """Bifurcation diagrams of a family of vehicles that differ in one parameter (Fig. 13).
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        The base vehicle.
+    values : sequence of float
+        Values of ``parameter`` in SI units (for the paper's Fig. 13, blow-off forces in N).
+    parameter : str
+        A :class:`Vehicle` parameter name; default the yaw damper's blow-off force ``F_u``.
+    speed_range_kmh : (float, float)
+        Speed range of every diagram (km/h).
+    **kwargs
+        Passed to :func:`bifurcation_diagram`.
+
+    Returns
+    -------
+    list of (value, BifurcationDiagram)
+        In the order of ``values``; ``diagram.hopf_type`` tells how the type changes.
+    """
+    values = [float(v) for v in values]
+    if not values:
+        raise ValueError("values is empty: give at least one value of the parameter")
+    out = []
+    for value in values:
+        member = vehicle.replace(**{parameter: value})
+        out.append((value, bifurcation_diagram(member, speed_range_kmh, **kwargs)))
+    return out

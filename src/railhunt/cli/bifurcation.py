@@ -22,6 +22,31 @@ from railhunt.cli import (
     main,
 )
 
+#: Blow-off force (N) standing for "no blow-off" ('inf' on the command line).
+_NO_BLOWOFF = 1e12
+
+
+def _parse_forces(ctx: click.Context, param: click.Parameter,
+                  value: str | None) -> list[float] | None:  # fmt: skip
+    """``--fu-family 1,3,8,inf`` (kN) to forces in N."""
+    if value is None:
+        return None
+    out = []
+    for item in value.split(","):
+        item = item.strip()
+        try:
+            kn = float(item)
+        except ValueError:
+            raise click.BadParameter(f"{item!r} is not a number of kN (or 'inf')") from None
+        if math.isinf(kn) and kn > 0:
+            out.append(_NO_BLOWOFF)
+        elif math.isfinite(kn) and 0 < kn <= 1e6:
+            out.append(kn * 1e3)
+        else:
+            raise click.BadParameter(f"{item} kN is not valid: each force must be in (0, 1e6] kN "
+                                     "or 'inf'")  # fmt: skip
+    return out
+
 
 def _png_option(help: str):
     return click.option("--png", "png_file", type=click.Path(dir_okay=False, path_type=Path),
@@ -42,10 +67,16 @@ def _initial_amplitude_option(help: str):
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON on stdout.")
 @_png_option("Draw the diagram like the paper's Fig. 7a (stable solid, unstable dashed, "
              "Hopf point, folds and point P).")  # fmt: skip
+@click.option("--fu-family", "fu_family", metavar="KN,KN,...", callback=_parse_forces,
+              help="Also compute a diagram for each of these yaw damper blow-off forces (kN; "
+              "'inf' for no blow-off) and report the bifurcation type of each, like the "
+              "paper's Fig. 13.")  # fmt: skip
+@click.option("--family-png", "family_png", type=click.Path(dir_okay=False, path_type=Path),
+              metavar="FILE", help="Draw the --fu-family diagrams side by side (Fig. 13).")
 @_vehicle_options
 def bifurcation(from_kmh: float, to_kmh: float, initial_mm: float, as_json: bool,
-                png_file: Path | None, vehicle_file: Path | None,
-                sets: dict[str, float]) -> None:  # fmt: skip
+                png_file: Path | None, fu_family: list[float] | None, family_png: Path | None,
+                vehicle_file: Path | None, sets: dict[str, float]) -> None:  # fmt: skip
     """Limit cycles of the vehicle on ideal track versus speed.
 
     \b
@@ -58,21 +89,36 @@ def bifurcation(from_kmh: float, to_kmh: float, initial_mm: float, as_json: bool
     bifurcation type (subcritical, supercritical-a, supercritical-b as in
     the paper's Fig. 5).
     """
-    _check_outputs(png=png_file)
+    _check_outputs(png=png_file, **{"family-png": family_png})
     if to_kmh <= from_kmh:
         raise CliError(f"--to {to_kmh:g} km/h must be above --from {from_kmh:g} km/h")
+    if family_png is not None and not fu_family:
+        raise CliError("--family-png needs --fu-family")
     vehicle = _build_vehicle(vehicle_file, sets)
-    from railhunt.analysis.continuation import bifurcation_diagram
+    from railhunt.analysis.continuation import bifurcation_diagram, bifurcation_family
 
     with _spinner("following limit cycles"):
         diagram = bifurcation_diagram(vehicle, (from_kmh, to_kmh))
+    family = []
+    if fu_family:
+        with _spinner("following limit cycles of the F_u family"):
+            family = bifurcation_family(vehicle, fu_family, "F_u", (from_kmh, to_kmh))
     if png_file is not None:
         from railhunt.plots import plot_bifurcation
 
         plot_bifurcation(diagram, png_file, initial_mm * 1e-3)
+    if family_png is not None:
+        from railhunt.plots import plot_bifurcation_family
+
+        plot_bifurcation_family(family, family_png)
+    summary = [{"F_u_kN": None if fu >= _NO_BLOWOFF else fu * 1e-3, "hopf_type": d.hopf_type,
+                "hopf_speed_kmh": d.hopf_speed_kmh, "fold_speed_kmh": d.fold_speed_kmh}
+               for fu, d in family]  # fmt: skip
     if as_json:
         data = diagram.to_dict(point_p_amplitude=initial_mm * 1e-3)
         data["vehicle"] = vehicle.name
+        if family:
+            data["fu_family"] = summary
         click.echo(json.dumps(_json_safe(data), indent=2))
         return
     out = _stdout_console()
@@ -93,8 +139,13 @@ def bifurcation(from_kmh: float, to_kmh: float, initial_mm: float, as_json: bool
                   f"amplitude up to {b.amplitude.max() * 1e3:.2f} mm")
     if not diagram.complete:
         out.print(f"[yellow]incomplete: {diagram.message}[/yellow]")
-    if png_file is not None:
-        out.print(f"wrote {png_file}")
+    for row in summary:
+        fu = "inf" if row["F_u_kN"] is None else f"{row['F_u_kN']:g} kN"
+        out.print(f"F_u = {fu}: {row['hopf_type']}, Hopf {row['hopf_speed_kmh']:.1f} km/h, "
+                  f"lowest limit cycle {row['fold_speed_kmh']:.1f} km/h")
+    for f in (png_file, family_png):
+        if f is not None:
+            out.print(f"wrote {f}")
 
 
 @main.command(short_help="Hunting frequency vs speed (eigenvalue, then limit cycle).")
