@@ -234,6 +234,28 @@ def main(argv: list[str] | None = None) -> int:
     t_nl, nl = median_time(lambda: railhunt.critical_speed(vehicle), repeat)
     rows.append(Row("nonlinear critical speed search", t_nl, 0.3))
 
+    # Periodic orbits and continuation (issue 4). The orbit case warms the compiled code;
+    # the whole diagram is timed once (it takes seconds).
+    from railhunt.analysis.continuation import bifurcation_diagram
+    from railhunt.analysis.periodic import phase_origin
+
+    settle = railhunt.simulate(vehicle, SPEED_KMH, duration=20.0,
+                               excitation=railhunt.InitialDisplacement(0.008))  # fmt: skip
+    k = phase_origin(settle.t, settle.x[:, Y_W1])
+    t_orb, orbit = median_time(
+        lambda: railhunt.periodic_orbit(vehicle, SPEED_KMH, settle.x[k], 0.21), repeat
+    )
+    rows.append(Row(f"limit cycle by shooting at {SPEED_KMH:g} km/h (+ Floquet)", t_orb))
+    t0 = time.perf_counter()
+    diagram = bifurcation_diagram(vehicle, (200.0, 500.0))
+    t_bif = time.perf_counter() - t0
+    n_orbits = sum(b.speed_kmh.size for b in diagram.branches)
+    rows.append(Row(f"bifurcation diagram 200-500 km/h ({n_orbits} orbits)", t_bif, 30.0))
+    t_hf, _ = median_time(lambda: railhunt.hunting_frequency(vehicle, 400.0), repeat)
+    rows.append(Row("hunting frequency at 400 km/h (limit cycle)", t_hf))
+    t_ramp, ramp = median_time(lambda: railhunt.critical_speed_ramp(vehicle), 1)
+    rows.append(Row("critical speed by speed ramp (type a)", t_ramp))
+
     rhs_err = check_baseline_rhs(vehicle, exc)
     t_base, sol = median_time(lambda: baseline_run(vehicle, exc), repeat_baseline)
     rows.append(Row("baseline: solve_ivp + NumPy RHS, 10 s", t_base))
@@ -252,6 +274,12 @@ def main(argv: list[str] | None = None) -> int:
         f"results: linear critical speed {lin.speed_kmh:.1f} km/h "
         f"({lin.frequency_hz:.2f} Hz); nonlinear {nl.speed_kmh:.0f} km/h "
         f"({len(nl.trials)} trial speeds)"
+    )
+    print(
+        f"limit cycle at {SPEED_KMH:g} km/h: {orbit.amplitude * 1e3:.3f} mm, "
+        f"{orbit.frequency_hz:.3f} Hz; diagram: {diagram.hopf_type}, Hopf "
+        f"{diagram.hopf_speed_kmh:.1f} km/h, lowest fold {diagram.fold_speed_kmh:.1f} km/h; "
+        f"ramp: cycle dies at {ramp.speed_kmh:.1f} km/h"
     )
     print(
         f"baseline check: NumPy RHS vs compiled RHS max rel. difference {rhs_err:.1e}; "
