@@ -255,3 +255,18 @@ def test_ramp_validates_range():
         critical_speed_ramp(PAPER, rate_kmh_per_s=-1.0)
     with pytest.raises(RuntimeError, match="no limit cycle"):
         critical_speed_ramp(PAPER, start_kmh=250.0, end_kmh=200.0)
+
+
+def test_blowoff_force_changes_type_not_hopf_point():
+    """Fig. 13: F_u does not move the Hopf point (the linearised damper is C_d1) but turns
+    the bifurcation from subcritical (3 kN) to supercritical (a) (no blow-off), and raises
+    the lowest limit cycle toward the Hopf point."""
+    from railhunt.analysis.continuation import bifurcation_family
+
+    family = bifurcation_family(PAPER, [3e3, 1e9], "F_u", (380.0, 500.0), seed_amplitudes=())
+    (_, soft), (_, hard) = family
+    assert soft.hopf_speed_kmh == pytest.approx(hard.hopf_speed_kmh, abs=0.01)
+    assert soft.hopf_type == "subcritical"
+    assert hard.hopf_type == "supercritical-a"
+    assert soft.fold_speed_kmh < 380.0 + 5.0  # the branch leaves the range downward
+    assert hard.fold_speed_kmh > hard.hopf_speed_kmh - 5.0

@@ -238,3 +238,13 @@ def test_frequency_table_jump_and_pngs(tmp_path):
 
 def test_frequency_rejects_bad_amplitude():
     assert_input_error(run("frequency", "--initial-amplitude", "-3"), "--initial-amplitude")
+
+
+@pytest.mark.parametrize("value", ["3,abc", "-1", "0", "3,,4"])
+def test_bifurcation_rejects_bad_fu_family(value):
+    assert_input_error(run("bifurcation", "--fu-family", value), "--fu-family")
+
+
+def test_family_png_needs_family(tmp_path):
+    assert_input_error(run("bifurcation", "--family-png", str(tmp_path / "f.png")),
+                       "--family-png", "--fu-family")
