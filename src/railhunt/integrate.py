@@ -34,6 +34,28 @@ def _check_state(t, x, y_limit, v, wr, trk, trs) -> int:
 
 
 @njit(cache=True)
+def rk4_step(t, x, h, v, lin, bd, dd, dpar, wr, trk, trs, k1, k2, k3, k4, tmp, out):
+    """One classical Runge-Kutta step of size ``h`` from ``(t, x)`` into ``out``.
+
+    ``k1 .. k4`` and ``tmp`` are work arrays of the state's size; ``out`` may be ``x``
+    itself (the update is elementwise after all stages are computed).
+    """
+    n = x.shape[0]
+    rhs(t, x, v, lin, bd, dd, dpar, wr, trk, trs, k1)
+    for i in range(n):
+        tmp[i] = x[i] + 0.5 * h * k1[i]
+    rhs(t + 0.5 * h, tmp, v, lin, bd, dd, dpar, wr, trk, trs, k2)
+    for i in range(n):
+        tmp[i] = x[i] + 0.5 * h * k2[i]
+    rhs(t + 0.5 * h, tmp, v, lin, bd, dd, dpar, wr, trk, trs, k3)
+    for i in range(n):
+        tmp[i] = x[i] + h * k3[i]
+    rhs(t + h, tmp, v, lin, bd, dd, dpar, wr, trk, trs, k4)
+    for i in range(n):
+        out[i] = x[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+
+
+@njit(cache=True)
 def rk4(x0, t0, dt, n_steps, stride, y_limit, v, lin, bd, dd, dpar, wr, trk, trs):
     """Classical fixed-step fourth-order Runge-Kutta.
 
@@ -77,18 +99,7 @@ def rk4(x0, t0, dt, n_steps, stride, y_limit, v, lin, bd, dd, dpar, wr, trk, trs
     status = OK
     t = t0
     for step in range(1, n_steps + 1):
-        rhs(t, x, v, lin, bd, dd, dpar, wr, trk, trs, k1)
-        for i in range(n):
-            tmp[i] = x[i] + 0.5 * dt * k1[i]
-        rhs(t + 0.5 * dt, tmp, v, lin, bd, dd, dpar, wr, trk, trs, k2)
-        for i in range(n):
-            tmp[i] = x[i] + 0.5 * dt * k2[i]
-        rhs(t + 0.5 * dt, tmp, v, lin, bd, dd, dpar, wr, trk, trs, k3)
-        for i in range(n):
-            tmp[i] = x[i] + dt * k3[i]
-        rhs(t + dt, tmp, v, lin, bd, dd, dpar, wr, trk, trs, k4)
-        for i in range(n):
-            x[i] += dt / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+        rk4_step(t, x, dt, v, lin, bd, dd, dpar, wr, trk, trs, k1, k2, k3, k4, tmp, x)
         t = t0 + step * dt
         status = _check_state(t, x, y_limit, v, wr, trk, trs)
         if step % stride == 0 or status != OK:

@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from railhunt.analysis.search import bracket_and_bisect, check_search
 from railhunt.model import N_STATE, Y_W1, Model
 from railhunt.simulation import Y_LIMIT, auto_step, excitation_end_time, integrate_model
 from railhunt.track import SingleDefect
@@ -225,17 +226,7 @@ def critical_speed(
     if excitation is None:
         excitation = SingleDefect()
     judgement = judgement or Judgement()
-    for name, value in (("start_kmh", start_kmh), ("step_kmh", step_kmh), ("tol_kmh", tol_kmh),
-                        ("min_kmh", min_kmh), ("max_kmh", max_kmh)):  # fmt: skip
-        if not (math.isfinite(value) and value > 0):
-            raise ValueError(f"{name} = {value!r} km/h is invalid: must be finite and > 0")
-    if not (min_kmh <= start_kmh <= max_kmh):
-        raise ValueError(
-            f"start_kmh = {start_kmh} km/h is invalid: must lie in [min_kmh, max_kmh] = "
-            f"[{min_kmh}, {max_kmh}] km/h"
-        )
-    if tol_kmh > step_kmh:
-        raise ValueError(f"tol_kmh = {tol_kmh} km/h is invalid: must be <= step_kmh = {step_kmh}")
+    check_search(start_kmh, step_kmh, tol_kmh, min_kmh, max_kmh)
     model = Model(vehicle, creep_law=creep_law)
     trials: list[Trial] = []
 
@@ -250,32 +241,8 @@ def critical_speed(
             progress(trial)
         return trial.verdict
 
-    speed = start_kmh
-    first = verdict(speed)
-    lo = hi = math.nan
-    if first == STABLE:
-        lo = speed
-        while speed + step_kmh <= max_kmh + 1e-9:
-            speed += step_kmh
-            if verdict(speed) == HUNTING:
-                hi = speed
-                break
-            lo = speed
-    else:
-        hi = speed
-        while speed - step_kmh >= min_kmh - 1e-9:
-            speed -= step_kmh
-            if verdict(speed) == STABLE:
-                lo = speed
-                break
-            hi = speed
-    if math.isnan(lo) or math.isnan(hi):
+    lo, _, bracketed = bracket_and_bisect(lambda kmh: verdict(kmh) == HUNTING, start_kmh,
+                                          step_kmh, tol_kmh, min_kmh, max_kmh)  # fmt: skip
+    if not bracketed:
         return CriticalSpeedResult(math.nan, trials, bracketed=False, excitation=excitation)
-    while hi - lo > tol_kmh + 1e-9:
-        mid = lo + tol_kmh * round((hi - lo) / (2 * tol_kmh))
-        mid = min(max(mid, lo + tol_kmh), hi - tol_kmh)
-        if verdict(mid) == STABLE:
-            lo = mid
-        else:
-            hi = mid
     return CriticalSpeedResult(lo, trials, bracketed=True, excitation=excitation)

@@ -34,7 +34,8 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from railhunt.model import N_STATE, WHEELSET_Y, Y_W1, Model, rhs
+from railhunt.integrate import rk4_step
+from railhunt.model import N_STATE, WHEELSET_Y, Y_W1, Model
 from railhunt.simulation import auto_step
 
 #: Index of dy_w1/dt in the state vector: the phase condition fixes it to zero.
@@ -46,23 +47,6 @@ _F0 = 34
 STATE_SCALE = np.concatenate([np.full(17, 1e-3), np.full(17, 1e-2), np.full(4, 1e3)])
 #: Relative finite-difference step (times STATE_SCALE).
 FD_STEP = 1e-5
-
-
-@njit(cache=True)
-def _rk4_step(t, x, h, v, lin, bd, dd, dpar, wr, trk, trs, k1, k2, k3, k4, tmp, out):
-    n = x.shape[0]
-    rhs(t, x, v, lin, bd, dd, dpar, wr, trk, trs, k1)
-    for i in range(n):
-        tmp[i] = x[i] + 0.5 * h * k1[i]
-    rhs(t + 0.5 * h, tmp, v, lin, bd, dd, dpar, wr, trk, trs, k2)
-    for i in range(n):
-        tmp[i] = x[i] + 0.5 * h * k2[i]
-    rhs(t + 0.5 * h, tmp, v, lin, bd, dd, dpar, wr, trk, trs, k3)
-    for i in range(n):
-        tmp[i] = x[i] + h * k3[i]
-    rhs(t + h, tmp, v, lin, bd, dd, dpar, wr, trk, trs, k4)
-    for i in range(n):
-        out[i] = x[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
 
 
 @njit(cache=True)
@@ -109,7 +93,7 @@ def flow(x0, horizon, n_steps, locate, v, lin, bd, dd, dpar, wr, trk, trs, sampl
         t = step * h
         remaining = h
         for _sub in range(16):
-            _rk4_step(t, x, remaining, v, lin, bd, dd, dpar, wr, trk, trs,
+            rk4_step(t, x, remaining, v, lin, bd, dd, dpar, wr, trk, trs,
                       k1, k2, k3, k4, tmp, xn)  # fmt: skip
             crossing = -1
             theta = 1.0
@@ -134,7 +118,7 @@ def flow(x0, horizon, n_steps, locate, v, lin, bd, dd, dpar, wr, trk, trs, sampl
             th = theta
             side = 0
             for _it in range(30):
-                _rk4_step(t, x, th * remaining, v, lin, bd, dd, dpar, wr, trk, trs,
+                rk4_step(t, x, th * remaining, v, lin, bd, dd, dpar, wr, trk, trs,
                           k1, k2, k3, k4, tmp, xt)  # fmt: skip
                 st = abs(xt[_F0 + crossing]) - fu
                 if abs(st) <= 1e-9 * fu:

@@ -40,6 +40,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy import signal
 
+from railhunt.analysis.search import bracket_and_bisect, check_search
 from railhunt.irregularity import TrackIrregularity, track_irregularity
 from railhunt.model import Model
 from railhunt.simulation import SimulationResult, simulate
@@ -330,17 +331,7 @@ def stochastic_critical_speed(
             f"irregularity = {type(irregularity).__name__} is invalid: must be a SampledTrack "
             "(railhunt.track_irregularity or railhunt.load_irregularity)"
         )
-    for name, value in (("start_kmh", start_kmh), ("step_kmh", step_kmh), ("tol_kmh", tol_kmh),
-                        ("min_kmh", min_kmh), ("max_kmh", max_kmh)):  # fmt: skip
-        if not (math.isfinite(value) and value > 0):
-            raise ValueError(f"{name} = {value!r} km/h is invalid: must be finite and > 0")
-    if not (min_kmh <= start_kmh <= max_kmh):
-        raise ValueError(
-            f"start_kmh = {start_kmh} km/h is invalid: must lie in [min_kmh, max_kmh] = "
-            f"[{min_kmh}, {max_kmh}] km/h"
-        )
-    if tol_kmh > step_kmh:
-        raise ValueError(f"tol_kmh = {tol_kmh} km/h is invalid: must be <= step_kmh = {step_kmh}")
+    check_search(start_kmh, step_kmh, tol_kmh, min_kmh, max_kmh)
     if f0_hz is not None and not (math.isfinite(f0_hz) and 0.5 <= f0_hz <= 50.0):
         raise ValueError(f"f0_hz = {f0_hz!r} Hz is invalid: must be finite and in [0.5, 50] Hz")
     model = Model(vehicle, creep_law=creep_law)
@@ -353,33 +344,10 @@ def stochastic_critical_speed(
             progress(a)
         return a.unstable
 
-    speed = start_kmh
-    lo = hi = math.nan
-    if not unstable(speed):
-        lo = speed
-        while speed + step_kmh <= max_kmh + 1e-9:
-            speed += step_kmh
-            if unstable(speed):
-                hi = speed
-                break
-            lo = speed
-    else:
-        hi = speed
-        while speed - step_kmh >= min_kmh - 1e-9:
-            speed -= step_kmh
-            if not unstable(speed):
-                lo = speed
-                break
-            hi = speed
-    if math.isnan(lo) or math.isnan(hi):
+    lo, hi, bracketed = bracket_and_bisect(unstable, start_kmh, step_kmh, tol_kmh, min_kmh,
+                                           max_kmh)  # fmt: skip
+    if not bracketed:
         return StochasticCriticalSpeedResult(math.nan, lo, trials, False, irregularity)
-    while hi - lo > tol_kmh + 1e-9:
-        mid = lo + tol_kmh * round((hi - lo) / (2 * tol_kmh))
-        mid = min(max(mid, lo + tol_kmh), hi - tol_kmh)
-        if unstable(mid):
-            hi = mid
-        else:
-            lo = mid
     return StochasticCriticalSpeedResult(hi, lo, trials, True, irregularity)
 
 

@@ -189,6 +189,16 @@ def _check_outputs(**files: Path | None) -> None:
             raise CliError(f"--{option} {path}: folder {str(path.parent)!r} does not exist")
 
 
+def _speed_count(from_kmh: float, to_kmh: float, step_kmh: float, most: int) -> int:
+    """Number of speeds ``from, from + step, ... <= to`` of a ``--from/--to/--step`` scan."""
+    if to_kmh < from_kmh:
+        raise CliError(f"--to {to_kmh:g} km/h is below --from {from_kmh:g} km/h")
+    n = int(math.floor((to_kmh - from_kmh) / step_kmh + 1e-9)) + 1
+    if n > most:
+        raise CliError(f"--step {step_kmh:g} km/h gives {n} speeds: at most {most} are allowed")
+    return n
+
+
 def _kmh_option(
     flag: str, dest: str, default: float, high: float, help: str
 ) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
@@ -644,11 +654,7 @@ def eigen(
     damping ratio (%) vs speed (km/h) and the linear critical speed.
     """
     _check_outputs(csv=csv_file, png=png_file)
-    if to_kmh < from_kmh:
-        raise CliError(f"--to {to_kmh:g} km/h is below --from {from_kmh:g} km/h")
-    n = int(math.floor((to_kmh - from_kmh) / step_kmh + 1e-9)) + 1
-    if n > 5000:
-        raise CliError(f"--step {step_kmh:g} km/h gives {n} speeds: at most 5000 are allowed")
+    n = _speed_count(from_kmh, to_kmh, step_kmh, 5000)
     vehicle = _build_vehicle(vehicle_file, sets)
 
     import numpy as np

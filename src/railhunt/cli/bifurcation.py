@@ -16,6 +16,7 @@ from railhunt.cli import (
     _json_safe,
     _kmh_option,
     _number_range,
+    _speed_count,
     _spinner,
     _stdout_console,
     _vehicle_options,
@@ -173,11 +174,7 @@ def frequency(from_kmh: float, to_kmh: float, step_kmh: float, initial_mm: float
     periodic orbit). The switch between the two is the paper's frequency jump.
     """
     _check_outputs(png=png_file, **{"damper-png": damper_png})
-    if to_kmh < from_kmh:
-        raise CliError(f"--to {to_kmh:g} km/h is below --from {from_kmh:g} km/h")
-    n = int(math.floor((to_kmh - from_kmh) / step_kmh + 1e-9)) + 1
-    if n > 500:
-        raise CliError(f"--step {step_kmh:g} km/h gives {n} speeds: at most 500")
+    n = _speed_count(from_kmh, to_kmh, step_kmh, 500)
     vehicle = _build_vehicle(vehicle_file, sets)
     import numpy as np
 
