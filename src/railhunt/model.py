@@ -25,7 +25,7 @@ from numba import njit
 
 from railhunt import track as _track
 from railhunt.contact.polynomial import contact_angle, rolling_radius
-from railhunt.creep import CREEP_LAWS, heuristic_saturation
+from railhunt.creep import CREEP_LAWS, heuristic_saturation, polach_saturation
 from railhunt.suspension import (
     DAMPER_NAMES,
     DOF_NAMES,
@@ -125,6 +125,9 @@ def wheelset_forces(
         if law == 0:
             al = heuristic_saturation(0.5 * (bl + br))
             ar = al
+        elif law == 3:
+            al = polach_saturation(bl)
+            ar = polach_saturation(br)
         else:
             al = heuristic_saturation(bl)
             ar = heuristic_saturation(br)
@@ -252,10 +255,11 @@ class Model:
     ----------
     vehicle : Vehicle
         Validated vehicle description (SI).
-    creep_law : {"heuristic", "heuristic-per-wheel", "linear"}
+    creep_law : {"heuristic", "heuristic-per-wheel", "linear", "polach"}
         ``"heuristic"``: the paper's Eq. 28 with one factor per wheelset from the mean of
         both wheels' ``beta``; ``"heuristic-per-wheel"``: one factor per wheel;
-        ``"linear"``: Kalker's linear law without saturation.
+        ``"linear"``: Kalker's linear law without saturation; ``"polach"``: Polach's
+        saturation per wheel (see :mod:`railhunt.creep`).
 
     Attributes
     ----------
