@@ -185,3 +185,66 @@ def s1002_uic60_parameters(normal_load: float = 10900.0 * 9.8 / 2.0,
     k_rail = transverse_curvature(rail_c.y, rail_c.z, float(geometry.rail_left[i0]))
     params, fit = profile_vehicle_parameters(geometry, k_wheel, k_rail, normal_load, y_fit)
     return params, fit, geometry
+
+
+def s1002_uic60_toml() -> str:
+    """Text of the shipped ``s1002_uic60.toml``: paper2019 with profile-based contact.
+
+    Every parameter of the paper's vehicle, with ``r0, a, lambda1..5, d0, d1, d4, d5,
+    f11, f22, f23, f33`` replaced by :func:`s1002_uic60_parameters`.
+    """
+    import tomllib
+    from importlib import resources
+
+    from railhunt.contact.conicity import equivalent_conicity
+
+    base = tomllib.loads((resources.files("railhunt") / "data" / "vehicles" /
+                          "paper2019.toml").read_text(encoding="utf-8"))
+    params, fit, geometry = s1002_uic60_parameters()
+    eq = equivalent_conicity(geometry.y, geometry.delta_r, 0.003)
+    rng = f"|y| <= {fit.y_fit * 1e3:g} mm"
+    meaning = {
+        "r0": "Nominal rolling radius: centred rolling radius r_L(0) of S1002 on UIC60 1:40 "
+              "(wheel radius 0.43 m at the tape circle)",
+        "a": "Half of the centred lateral distance between the contact points",
+    }
+    for k in ("lambda1", "lambda2", "lambda3", "lambda4", "lambda5"):
+        meaning[k] = f"Rolling-radius polynomial (Eq. 32), least-squares fit over {rng}"
+    for k in ("d0", "d1", "d4", "d5"):
+        meaning[k] = f"Contact-angle polynomial (Eq. 33, paper's sign of y), fit over {rng}"
+    for k, what in (("f11", "Longitudinal"), ("f22", "Lateral"), ("f23", "Lateral/spin"),
+                    ("f33", "Spin")):
+        meaning[k] = f"{what} creep coefficient: Hertz + Kalker at the centred contact point"
+    lines = [
+        "# railhunt vehicle file: the paper's vehicle (paper2019) with S1002 wheels on UIC60",
+        "# rails inclined 1:40, gauge 1435 mm, back-to-back 1360 mm, wheel radius 0.43 m at",
+        "# the tape circle. Written by railhunt.contact.fit.s1002_uic60_toml(); the tests check",
+        "# that it is what the code computes. Contact geometry: rigid contact search on the",
+        "# analytic EN 13715 S1002 and EN 13674-1 60E1 profiles; Eqs. 32-33 fitted by least",
+        f"# squares over {rng}: rolling radius RMS error {fit.radius_rms * 1e3:.3f} mm "
+        f"(max {fit.radius_max * 1e3:.3f} mm),",
+        f"# Delta r max error {fit.delta_r_max * 1e3:.3f} mm, contact angle RMS error "
+        f"{fit.angle_rms:.4f} rad (max {fit.angle_max:.4f} rad).",
+        f"# Equivalent conicity (EN 15302 Annex B) at 3 mm amplitude: {eq:.4f}.",
+        "# Kalker coefficients: Hertz ellipse for N = W*g/2, E = 210 GPa, nu = 0.3 and the",
+        "# wheel and rail transverse curvatures at the centred contact point.",
+        "# SI units throughout. Each parameter: value (SI), unit, meaning, source.",
+        "",
+        "[vehicle]",
+        'name = "s1002_uic60"',
+        'description = "paper2019 vehicle, S1002 wheels on UIC60 rails 1:40 '
+        '(profile-based contact geometry)"',
+    ]
+    for name, entry in base["parameters"].items():
+        value = params.get(name, entry["value"])
+        mean = meaning.get(name, entry["meaning"])
+        src = "railhunt.contact.fit.s1002_uic60_parameters" if name in params else entry[
+            "source"]
+        lines += ["", f"[parameters.{name}]", f"value = {float(value)!r}",
+                  f'unit = "{entry["unit"]}"', "meaning = " + _quote(mean),
+                  "source = " + _quote(src)]
+    return "\n".join(lines) + "\n"
+
+
+def _quote(text: str) -> str:
+    return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
