@@ -23,7 +23,7 @@ if TYPE_CHECKING:
     from railhunt.analysis.linear import EigenResult, LinearCriticalSpeed
     from railhunt.simulation import SimulationResult
 
-__all__ = ["plot_root_locus", "plot_time_history"]
+__all__ = ["plot_contact_geometry", "plot_root_locus", "plot_time_history"]
 
 #: Start of the phase-plane window (s), as in the paper's Fig. 6 (after the transient).
 PHASE_FROM = 3.0
@@ -221,4 +221,54 @@ def plot_root_locus(
     ax_z.set_ylabel("hunting damping ratio (%)")
     ax_z.set_title("hunting mode damping (< 0: hunting grows)")
     ax_z.grid(True, alpha=0.3)
+    return _save(fig, path)
+
+
+def plot_contact_geometry(geometry: object, path: str | os.PathLike[str]) -> Path:
+    """Plot a wheelset's contact geometry against its lateral displacement (mm, deg, mrad).
+
+    Four panels: rolling radii ``r_L``, ``r_R``; rolling-radius difference ``Delta r``;
+    contact angles ``delta_L``, ``delta_R``; wheelset roll and the contact point's position
+    on each wheel profile. Contact-point jumps (two-point contact) are marked by dotted
+    vertical lines.
+
+    Parameters
+    ----------
+    geometry : railhunt.contact.geometry.ContactGeometry
+        The table to plot.
+    path : str or os.PathLike
+        PNG file to write.
+    """
+    g = geometry
+    y = g.y * 1e3
+    fig = _new_figure(10.0, 7.0)
+    axes = fig.subplots(2, 2, sharex=True)
+    ax = axes[0, 0]
+    ax.plot(y, g.r_left * 1e3, label="$r_L$")
+    ax.plot(y, g.r_right * 1e3, label="$r_R$")
+    ax.set_ylabel("rolling radius (mm)")
+    ax.legend()
+    ax = axes[0, 1]
+    ax.plot(y, g.delta_r * 1e3, color="k")
+    ax.set_ylabel(r"$\Delta r = r_L - r_R$ (mm)")
+    ax = axes[1, 0]
+    ax.plot(y, np.degrees(g.delta_left), label=r"$\delta_L$")
+    ax.plot(y, np.degrees(g.delta_right), label=r"$\delta_R$")
+    ax.set_ylabel("contact angle (deg)")
+    ax.legend()
+    ax = axes[1, 1]
+    ax.plot(y, g.roll * 1e3, color="k", label="roll (mrad)")
+    ax.plot(y, g.wheel_left * 1e3, label="contact on left wheel (mm)")
+    ax.plot(y, g.wheel_right * 1e3, label="contact on right wheel (mm)")
+    ax.set_ylabel("roll (mrad), contact position (mm)")
+    ax.legend(fontsize="small")
+    for ax in axes.flat:
+        ax.grid(True, alpha=0.3)
+        for yj in y[g.jump]:
+            ax.axvline(yj, color="0.6", linestyle=":", linewidth=0.8)
+    for ax in axes[1]:
+        ax.set_xlabel("lateral wheelset displacement y (mm), + left")
+    p = g.params
+    fig.suptitle(f"{p.get('wheel', '')} on {p.get('rail', '')}, inclination "
+                 f"{p.get('rail_inclination', 0):.4g}, gauge {p.get('gauge', 0) * 1e3:g} mm")
     return _save(fig, path)
