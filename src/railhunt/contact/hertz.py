@@ -175,8 +175,13 @@ def hertz_contact(normal_load: float, curvature_x: float, curvature_y: float,
     else:
         if ratio > 1e4:
             raise ValueError(f"curvature ratio B/A = {ratio:.4g} is invalid: must be <= 1e4")
-        m = brentq(lambda mm: _ratio_of_curvatures(mm) - ratio, 1e-14, 1.0 - 1e-15,
-                   xtol=1e-16, rtol=1e-14, maxiter=500)
+        m_lo = 1e-6  # below, K - E loses digits: ratio - 1 is linear in m there
+        r_lo = _ratio_of_curvatures(m_lo)
+        if ratio <= r_lo:
+            m = m_lo * (ratio - 1.0) / (r_lo - 1.0)
+        else:
+            m = brentq(lambda mm: _ratio_of_curvatures(mm) - ratio, m_lo, 1.0 - 1e-15,
+                       xtol=1e-16, rtol=1e-14, maxiter=500)
     long_axis = (3.0 * normal_load * _k_minus_e_over_m(m) / (2.0 * math.pi * e_star * small)
                  ) ** (1.0 / 3.0)
     short_axis = long_axis * math.sqrt(1.0 - m)
