@@ -97,7 +97,9 @@ def test_shipped_profiles_and_text_round_trip(tmp_path):
     assert wheel.kind == "wheel" and wheel.name == "MBench_S1002_v3.prw"
     g = s1002(step=1e-3)
     csv = tmp_path / "w.csv"
-    csv.write_text("y_mm,z_mm\n" + "\n".join(f"{a * 1e3},{b * 1e3}" for a, b in zip(g.y, g.z)))
+    csv.write_text(
+        "y_mm,z_mm\n" + "\n".join(f"{a * 1e3},{b * 1e3}" for a, b in zip(g.y, g.z, strict=True))
+    )
     back = read_profile(csv, "wheel")
     np.testing.assert_allclose(back.y, g.y, atol=1e-12)
     np.testing.assert_allclose(back.z, g.z, atol=1e-12)
@@ -459,3 +461,44 @@ def test_profile_vehicle_runs_through_critical_speed():
     data = json.loads(res.stdout)
     assert data["vehicle"] == "s1002_uic60" and data["bracketed"] is True
     assert 100 < data["nonlinear_critical_speed_kmh"] < data["linear_critical_speed_kmh"]
+
+
+# --------------------------------------------------------------------------- tabulated RHS
+
+
+def _polynomial_table(v, y):
+    from types import SimpleNamespace
+
+    from railhunt.contact.polynomial import contact_angle, rolling_radius
+
+    def r(u):
+        return np.array([rolling_radius(x, v.r0, v.lambda1, v.lambda2, v.lambda3, v.lambda4,
+                                        v.lambda5) for x in u])
+
+    def d(u):
+        return np.array([contact_angle(x, v.d0, v.d1, v.d4, v.d5, v.delta_max) for x in u])
+
+    return SimpleNamespace(y=y, r_left=r(y), r_right=r(-y), delta_left=d(y),
+                           delta_right=d(-y))
+
+
+def test_tabulated_geometry_reproduces_the_polynomials():
+    """The paper's polynomials, tabulated every 0.05 mm, give the same forces and the same
+    linear critical speed (interpolation error O(h^2) ~ 1e-10 m in the radii)."""
+    from railhunt.analysis.linear import linear_critical_speed
+    from railhunt.model import N_STATE, WHEELSET_Y, Model
+    from railhunt.vehicle import Vehicle
+
+    v = Vehicle.paper2019()
+    table = _polynomial_table(v, np.linspace(-0.012, 0.012, 481))
+    poly, tab = Model(v), Model(v, contact=table)
+    x = np.zeros(N_STATE)
+    for k, j in enumerate(WHEELSET_Y):
+        x[j] = 0.001 * (k + 1) * (-1) ** k
+        x[j + 1] = 0.0005 * (k - 1.5)
+    a, b = poly.derivative(x, 80.0), tab.derivative(x, 80.0)
+    np.testing.assert_allclose(b, a, rtol=1e-5, atol=1e-6 * np.max(np.abs(a)))
+    assert linear_critical_speed(v, contact=table).speed_kmh == pytest.approx(
+        linear_critical_speed(v).speed_kmh, abs=0.1)
+    with pytest.raises(ValueError, match="uniformly"):
+        Model(v, contact=_polynomial_table(v, np.array([-0.01, 0.0, 0.002, 0.01])))

@@ -192,6 +192,7 @@ def critical_speed(
     dt: float | None = None,
     creep_law: str = "heuristic",
     progress: Callable[[Trial], None] | None = None,
+    contact: object = None,
 ) -> CriticalSpeedResult:
     """Nonlinear critical speed by bisection (the paper's Sec. 4, excitation type (b)).
 
@@ -217,6 +218,8 @@ def critical_speed(
         See :class:`railhunt.model.Model`.
     progress : callable, optional
         Called with each :class:`Trial` as it finishes.
+    contact : ContactGeometry, optional
+        Tabulated contact geometry instead of the polynomials (see :class:`Model`).
 
     Returns
     -------
@@ -236,7 +239,7 @@ def critical_speed(
         )
     if tol_kmh > step_kmh:
         raise ValueError(f"tol_kmh = {tol_kmh} km/h is invalid: must be <= step_kmh = {step_kmh}")
-    model = Model(vehicle, creep_law=creep_law)
+    model = Model(vehicle, creep_law=creep_law, contact=contact)
     trials: list[Trial] = []
 
     if dt is not None and not (math.isfinite(dt) and 0 < dt <= 0.01):

@@ -4,4 +4,5 @@ One line per topic module, each of which decorates :func:`railhunt.cli.main`.
 """
 
 from __future__ import annotations
+
 from railhunt.cli import contact  # noqa: F401
