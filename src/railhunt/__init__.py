@@ -12,6 +12,10 @@ Main entry points (imported lazily, so ``import railhunt`` stays fast)::
     critical_speed                   nonlinear critical speed by bisection (the paper's)
     eigen_analysis                   eigenvalues and hunting mode versus speed
     SingleDefect, InitialDisplacement  excitations
+    read_profile, s1002, uic60       wheel/rail profiles (SIMPACK, text; EN 13715, 60E1)
+    contact_geometry                 rigid contact: r_L, r_R, contact angles, roll vs y
+    equivalent_conicity              EN 15302 equivalent conicity of a Delta r table
+    creep_coefficients               Hertz ellipse + Kalker's f11, f22, f23, f33
 """
 
 from __future__ import annotations
@@ -34,6 +38,18 @@ _EXPORTS = {
     "linear_critical_speed": "railhunt.analysis.linear",
     "eigen_analysis": "railhunt.analysis.linear",
     "critical_speed": "railhunt.analysis.critical",
+    "equivalent_conicity": "railhunt.contact.conicity",
+    "equivalent_conicity_regression": "railhunt.contact.conicity",
+    "contact_geometry": "railhunt.contact.geometry",
+    "ContactGeometry": "railhunt.contact.geometry",
+    "Profile": "railhunt.contact.profiles",
+    "read_profile": "railhunt.contact.profiles",
+    "s1002": "railhunt.contact.profiles",
+    "uic60": "railhunt.contact.profiles",
+    "hertz_contact": "railhunt.contact.hertz",
+    "kalker_coefficients": "railhunt.contact.hertz",
+    "creep_coefficients": "railhunt.contact.hertz",
+    "fit_polynomials": "railhunt.contact.fit",
 }
 
 __all__ = sorted(_EXPORTS)

@@ -187,7 +187,7 @@ def hertz_contact(normal_load: float, curvature_x: float, curvature_y: float,
     short_axis = long_axis * math.sqrt(1.0 - m)
     a, b = (long_axis, short_axis) if curvature_x <= curvature_y else (short_axis, long_axis)
     p0 = 3.0 * normal_load / (2.0 * math.pi * a * b)
-    return HertzContact(a, b, p0)
+    return HertzContact(float(a), float(b), float(p0))
 
 
 @dataclass(frozen=True)
