@@ -308,6 +308,20 @@ def test_kalker_table_values_and_interpolation():
         kalker_coefficients(1.0, 0.7)
 
 
+@pytest.mark.parametrize("nu", [0.0, 0.25, 0.5])
+def test_kalker_table_approaches_its_narrow_ellipse_asymptotes(nu):
+    """At a/b = 0.1 the table is within 7 % of Kalker's a/b -> 0 asymptotes:
+    C11 = pi^2/(4(1-nu)), C22 = pi^2/4, C23 = pi sqrt(g)/(3(1-nu)) (1 + nu(ln(16/g) - 5)),
+    C33 = pi^2/(16 (1-nu) g) (a check of the transcribed C33 column)."""
+    g = 0.1
+    c11, c22, c23, c33 = kalker_coefficients(g, nu)
+    assert c11 == pytest.approx(math.pi**2 / (4 * (1 - nu)), rel=0.03)
+    assert c22 == pytest.approx(math.pi**2 / 4, rel=0.03)
+    asym23 = math.pi * math.sqrt(g) / (3 * (1 - nu)) * (1 + nu * (math.log(16 / g) - 5))
+    assert c23 == pytest.approx(asym23, rel=0.07)
+    assert c33 == pytest.approx(math.pi**2 / (16 * (1 - nu) * g), rel=0.07)
+
+
 def test_creep_coefficients_near_table_2():
     """Paper's wheel load, r = 0.43 m wheel (straight tread) on the R300 UIC60 crown.
 
