@@ -61,6 +61,9 @@ class Profile:
         Label (file name or standard name).
     source : str
         Where the points come from.
+    meta : dict
+        Header values of a SIMPACK file (``type``, ``mirror.y``, ...) and the
+        ``inclination`` applied, if any.
     """
 
     y: np.ndarray
