@@ -18,6 +18,10 @@ Main entry points (imported lazily, so ``import railhunt`` stays fast)::
     SingleDefect, InitialDisplacement  excitations
     track_irregularity, load_irregularity  random (published PSD) or measured track
     stochastic_critical_speed        lowest speed breaking the EN 14363-style criterion
+    read_profile, s1002, uic60       wheel/rail profiles (SIMPACK, text; EN 13715, 60E1)
+    contact_geometry                 rigid contact: r_L, r_R, contact angles, roll vs y
+    equivalent_conicity              EN 15302 equivalent conicity of a Delta r table
+    creep_coefficients               Hertz ellipse + Kalker's f11, f22, f23, f33
 """
 
 from __future__ import annotations
@@ -50,6 +54,18 @@ _EXPORTS = {
     "TrackIrregularity": "railhunt.irregularity",
     "stochastic_critical_speed": "railhunt.analysis.stochastic",
     "assess_stability": "railhunt.analysis.stochastic",
+    "equivalent_conicity": "railhunt.contact.conicity",
+    "equivalent_conicity_regression": "railhunt.contact.conicity",
+    "contact_geometry": "railhunt.contact.geometry",
+    "ContactGeometry": "railhunt.contact.geometry",
+    "Profile": "railhunt.contact.profiles",
+    "read_profile": "railhunt.contact.profiles",
+    "s1002": "railhunt.contact.profiles",
+    "uic60": "railhunt.contact.profiles",
+    "hertz_contact": "railhunt.contact.hertz",
+    "kalker_coefficients": "railhunt.contact.hertz",
+    "creep_coefficients": "railhunt.contact.hertz",
+    "fit_polynomials": "railhunt.contact.fit",
 }
 
 __all__ = sorted(_EXPORTS)

@@ -1,16 +1,31 @@
-"""Creep laws: Kalker's linear theory with the paper's heuristic saturation.
+"""Creep laws: Kalker's linear theory with the paper's heuristic saturation or Polach's.
 
 Kalker's linear law (Eq. 26) gives the creep forces of one wheel from its creepages;
 the heuristic (Johnson-Vermeulen type) saturation of Eqs. 27-28 scales the
 longitudinal and lateral forces so that their resultant never exceeds ``mu * N``.
+
+Polach's method (O. Polach, "A fast wheel-rail forces calculation computer code",
+Vehicle System Dynamics 33 (suppl.), 1999, 728-739) gives the resultant tangential force
+``F = (2 mu N / pi) (eps / (1 + eps^2) + atan(eps))`` with the gradient of the
+tangential stress ``eps = (2/3) C pi a^2 b s / (mu N)``, ``C = (3/8) (G/a) c_jj``
+(Kalker's coefficients). Since ``(2/3) C pi a^2 b s = (pi/4) |F_Kalker|``, this is
+``eps = (pi/4) beta`` with ``beta = |F_Kalker| / (mu N)``, the same input as the
+heuristic law: :func:`polach_saturation` returns ``alpha = F / (mu N beta)``.
+Departure: Polach's separate spin term (``F_yS`` with ``K_M``) needs the ellipse
+semi-axes, which the model does not carry; the spin part of Kalker's lateral force is
+saturated together with the creepage part, as in the heuristic law.
 """
 
 from __future__ import annotations
 
+import math
+
 from numba import njit
 
 #: Creep-law codes understood by the compiled right-hand side.
-CREEP_LAWS: dict[str, int] = {"heuristic": 0, "heuristic-per-wheel": 1, "linear": 2}
+CREEP_LAWS: dict[str, int] = {
+    "heuristic": 0, "heuristic-per-wheel": 1, "linear": 2, "polach": 3,
+}
 
 
 @njit(cache=True)
@@ -33,6 +48,27 @@ def heuristic_saturation(beta: float) -> float:
     if beta <= 3.0:
         return 1.0 - beta / 3.0 + beta * beta / 27.0
     return 1.0 / beta
+
+
+@njit(cache=True)
+def polach_saturation(beta: float) -> float:
+    """Polach's saturation factor ``alpha(beta)`` (dimensionless), per wheel.
+
+    Parameters
+    ----------
+    beta : float
+        Unsaturated (Kalker) resultant creep force over ``mu * N`` (>= 0).
+
+    Returns
+    -------
+    float
+        ``(2 / (pi beta)) (eps / (1 + eps^2) + atan(eps))`` with ``eps = pi beta / 4``;
+        1 at ``beta = 0`` (Kalker's slope), ``alpha * beta -> 1`` as ``beta -> inf``.
+    """
+    if beta < 1e-9:
+        return 1.0 - (math.pi * beta / 4.0) ** 2 * (2.0 / 3.0)
+    eps = 0.25 * math.pi * beta
+    return 2.0 / (math.pi * beta) * (eps / (1.0 + eps * eps) + math.atan(eps))
 
 
 @njit(cache=True)

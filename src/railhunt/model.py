@@ -25,7 +25,7 @@ from numba import njit
 
 from railhunt import track as _track
 from railhunt.contact.polynomial import contact_angle, rolling_radius
-from railhunt.creep import CREEP_LAWS, heuristic_saturation
+from railhunt.creep import CREEP_LAWS, heuristic_saturation, polach_saturation
 from railhunt.suspension import (
     DAMPER_NAMES,
     DOF_NAMES,
@@ -56,6 +56,9 @@ WHEELSET_Y = np.array([DOF_NAMES.index(f"y_w{j}") for j in range(1, 5)])
 N_WR = _OFF + 4
 #: Index of the first wheelset offset in the wheel/rail vector.
 WR_OFFSET = _OFF
+#: Tail of ``wr`` from this index: tabulated contact geometry ``[n, y0, dy, r_L[n],
+#: r_R[n], delta_L[n], delta_R[n]]`` on a uniform ``y`` grid; ``n = 0``: polynomials.
+WR_TABLE = N_WR
 
 
 @njit(cache=True)
@@ -90,11 +93,31 @@ def wheelset_forces(
     f11, f22, f23, f33 = wr[_F11], wr[_F22], wr[_F23], wr[_F33]
     a, r0 = wr[_A], wr[_R0]
     n_load = wr[_N]
-    # Contact geometry, wheel by wheel (u = displacement toward the wheel's flange).
-    r_l = rolling_radius(y_rel, r0, wr[_L1], wr[_L2], wr[_L3], wr[_L4], wr[_L5])
-    r_r = rolling_radius(-y_rel, r0, wr[_L1], wr[_L2], wr[_L3], wr[_L4], wr[_L5])
-    d_l = contact_angle(y_rel, wr[_D0], wr[_D1], wr[_D4], wr[_D5], wr[_DMAX])
-    d_r = contact_angle(-y_rel, wr[_D0], wr[_D1], wr[_D4], wr[_D5], wr[_DMAX])
+    n_tab = int(wr[WR_TABLE]) if wr.shape[0] > WR_TABLE else 0
+    if n_tab > 1:
+        # Tabulated geometry: linear interpolation, clamped at the table's ends.
+        s = (y_rel - wr[WR_TABLE + 1]) / wr[WR_TABLE + 2]
+        if s <= 0.0:
+            i, w = 0, 0.0
+        elif s >= n_tab - 1:
+            i, w = n_tab - 2, 1.0
+        else:
+            i = int(s)
+            w = s - i
+        k = WR_TABLE + 3 + i
+        r_l = wr[k] + w * (wr[k + 1] - wr[k])
+        k += n_tab
+        r_r = wr[k] + w * (wr[k + 1] - wr[k])
+        k += n_tab
+        d_l = wr[k] + w * (wr[k + 1] - wr[k])
+        k += n_tab
+        d_r = wr[k] + w * (wr[k + 1] - wr[k])
+    else:
+        # Paper's polynomials, wheel by wheel (u = displacement toward the wheel's flange).
+        r_l = rolling_radius(y_rel, r0, wr[_L1], wr[_L2], wr[_L3], wr[_L4], wr[_L5])
+        r_r = rolling_radius(-y_rel, r0, wr[_L1], wr[_L2], wr[_L3], wr[_L4], wr[_L5])
+        d_l = contact_angle(y_rel, wr[_D0], wr[_D1], wr[_D4], wr[_D5], wr[_DMAX])
+        d_r = contact_angle(-y_rel, wr[_D0], wr[_D1], wr[_D4], wr[_D5], wr[_DMAX])
     cdl, sdl = math.cos(d_l), math.sin(d_l)
     cdr, sdr = math.cos(d_r), math.sin(d_r)
     cpsi, spsi = math.cos(psi), math.sin(psi)
@@ -125,6 +148,9 @@ def wheelset_forces(
         if law == 0:
             al = heuristic_saturation(0.5 * (bl + br))
             ar = al
+        elif law == 3:
+            al = polach_saturation(bl)
+            ar = polach_saturation(br)
         else:
             al = heuristic_saturation(bl)
             ar = heuristic_saturation(br)
@@ -252,10 +278,16 @@ class Model:
     ----------
     vehicle : Vehicle
         Validated vehicle description (SI).
-    creep_law : {"heuristic", "heuristic-per-wheel", "linear"}
+    creep_law : {"heuristic", "heuristic-per-wheel", "linear", "polach"}
         ``"heuristic"``: the paper's Eq. 28 with one factor per wheelset from the mean of
         both wheels' ``beta``; ``"heuristic-per-wheel"``: one factor per wheel;
-        ``"linear"``: Kalker's linear law without saturation.
+        ``"linear"``: Kalker's linear law without saturation; ``"polach"``: Polach's
+        saturation per wheel (see :mod:`railhunt.creep`).
+    contact : railhunt.contact.geometry.ContactGeometry, optional
+        Tabulated contact geometry (uniform ``y`` grid) used instead of the vehicle's
+        polynomials (Eqs. 32-33): ``r_L, r_R, delta_L, delta_R`` interpolated linearly in
+        the compiled right-hand side, held constant beyond the table. The vehicle's ``r0``
+        (creepage reference) and ``a`` are still used.
 
     Attributes
     ----------
@@ -265,13 +297,16 @@ class Model:
         Suspension stiffness (incl. gravitational roll terms) and damping matrices.
     """
 
-    def __init__(self, vehicle: Vehicle, creep_law: str = "heuristic") -> None:
+    def __init__(
+        self, vehicle: Vehicle, creep_law: str = "heuristic", contact: object = None
+    ) -> None:
         if creep_law not in CREEP_LAWS:
             raise ValueError(
                 f"creep_law = {creep_law!r} is invalid: must be one of {sorted(CREEP_LAWS)}"
             )
         self.vehicle = vehicle
         self.creep_law = creep_law
+        self.contact = contact
         self.mass = mass_matrix_diagonal(vehicle)
         k_susp, self.C = assemble(suspension_elements(vehicle))
         self.K = k_susp + gravity_stiffness(vehicle)
@@ -285,7 +320,7 @@ class Model:
     def wheel_rail_vector(self) -> np.ndarray:
         """Wheel/rail parameters packed for :func:`wheelset_forces`."""
         v = self.vehicle
-        wr = np.zeros(N_WR)
+        wr = np.zeros(N_WR + 3)
         wr[_F11], wr[_F22], wr[_F23], wr[_F33] = v.f11, v.f22, v.f23, v.f33
         wr[_MU], wr[_N], wr[_A], wr[_R0] = v.mu, v.N, v.a, v.r0
         wr[_L1:_L5 + 1] = [v.lambda1, v.lambda2, v.lambda3, v.lambda4, v.lambda5]
@@ -293,6 +328,8 @@ class Model:
         wr[_LAW] = CREEP_LAWS[self.creep_law]
         wr[_INV_MW], wr[_INV_JW] = 1.0 / v.M_w, 1.0 / v.J_wz
         wr[_OFF:_OFF + 4] = self.wheelset_offsets()
+        if self.contact is not None:
+            wr = np.concatenate([wr[:N_WR], _contact_table(self.contact)])
         return wr
 
     def wheelset_offsets(self) -> np.ndarray:
@@ -338,6 +375,23 @@ class Model:
             k_d, c1, c2, fu = self.dpar[d]
             flat_o[:, d] = _damper_velocity_array(flat_f[:, d], c1, c2, fu)
         return out
+
+
+def _contact_table(contact: object) -> np.ndarray:
+    """Pack a contact table (``y`` uniform) into the ``wr`` tail (see :data:`WR_TABLE`)."""
+    y = np.asarray(contact.y, dtype=np.float64)
+    step = np.diff(y)
+    if y.ndim != 1 or y.size < 2 or not np.all(step > 0):
+        raise ValueError("contact.y must be strictly increasing with at least 2 points")
+    if np.max(np.abs(step - step[0])) > 1e-9 * max(abs(step[0]), 1e-12) + 1e-15:
+        raise ValueError("contact.y must be uniformly spaced (tabulated geometry)")
+    cols = [np.asarray(getattr(contact, name), dtype=np.float64)
+            for name in ("r_left", "r_right", "delta_left", "delta_right")]
+    for name, col in zip(("r_left", "r_right", "delta_left", "delta_right"), cols,
+                         strict=True):
+        if col.shape != y.shape or not np.all(np.isfinite(col)):
+            raise ValueError(f"contact.{name} must be finite with the shape of contact.y")
+    return np.concatenate([[float(y.size), y[0], step[0]], *cols])
 
 
 @njit(cache=True)

@@ -193,6 +193,7 @@ def critical_speed(
     dt: float | None = None,
     creep_law: str = "heuristic",
     progress: Callable[[Trial], None] | None = None,
+    contact: object = None,
 ) -> CriticalSpeedResult:
     """Nonlinear critical speed by bisection (the paper's Sec. 4, excitation type (b)).
 
@@ -218,6 +219,8 @@ def critical_speed(
         See :class:`railhunt.model.Model`.
     progress : callable, optional
         Called with each :class:`Trial` as it finishes.
+    contact : ContactGeometry, optional
+        Tabulated contact geometry instead of the polynomials (see :class:`Model`).
 
     Returns
     -------
@@ -227,7 +230,7 @@ def critical_speed(
         excitation = SingleDefect()
     judgement = judgement or Judgement()
     check_search(start_kmh, step_kmh, tol_kmh, min_kmh, max_kmh)
-    model = Model(vehicle, creep_law=creep_law)
+    model = Model(vehicle, creep_law=creep_law, contact=contact)
     trials: list[Trial] = []
 
     if dt is not None and not (math.isfinite(dt) and 0 < dt <= 0.01):

@@ -174,6 +174,7 @@ def linear_critical_speed(
     tol_kmh: float = 0.01,
     scan_step_kmh: float = 20.0,
     creep_law: str = "heuristic",
+    contact: object = None,
 ) -> LinearCriticalSpeed:
     """Lowest speed at which the centred equilibrium loses stability (Hopf point).
 
@@ -195,6 +196,8 @@ def linear_critical_speed(
         Grid step of the scan (km/h).
     creep_law : str
         See :class:`railhunt.model.Model`.
+    contact : ContactGeometry, optional
+        Tabulated contact geometry instead of the polynomials (see ``Model``).
 
     Returns
     -------
@@ -209,7 +212,7 @@ def linear_critical_speed(
         raise ValueError(
             f"min_kmh = {min_kmh} km/h is invalid: must be below max_kmh = {max_kmh} km/h"
         )
-    model = Model(vehicle, creep_law=creep_law)
+    model = Model(vehicle, creep_law=creep_law, contact=contact)
 
     def growth(kmh: float) -> float:
         return float(np.max(np.linalg.eigvals(model.jacobian(kmh / 3.6)).real))

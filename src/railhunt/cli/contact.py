@@ -1,0 +1,155 @@
+"""``railhunt contact``: wheel/rail contact geometry and equivalent conicity from profiles."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import click
+
+from railhunt.cli import CliError, _check_outputs, _json_safe, _number_range, _user_input, main
+
+_INCLINATIONS = {"1:40": 1.0 / 40.0, "1:20": 1.0 / 20.0, "none": 0.0, "0": 0.0}
+
+
+def _inclination(ctx: click.Context, param: click.Parameter, value: str) -> float:
+    text = value.strip().lower()
+    if text in _INCLINATIONS:
+        return _INCLINATIONS[text]
+    try:
+        if ":" in text:
+            num, den = (float(p) for p in text.split(":"))
+            incl = num / den
+        else:
+            incl = float(text)
+    except (ValueError, ZeroDivisionError):
+        raise click.BadParameter(
+            f"{value!r} is not a valid inclination: use 1:40, 1:20, none or a tangent "
+            "in [0, 0.1]"
+        ) from None
+    if not (math.isfinite(incl) and 0.0 <= incl <= 0.1):
+        raise click.BadParameter(f"{value!r} is not a valid inclination: the tangent must "
+                                 "be in [0, 0.1]")
+    return incl
+
+
+@main.command("contact")
+@click.option("--wheel", "wheel", default="S1002", show_default=True, metavar="FILE|S1002",
+              help="Wheel profile: SIMPACK .prw or 'y z' text/CSV file in mm (field side "
+                   "at +y, radius increase at +z), or S1002 for the analytic EN 13715 profile.")
+@click.option("--rail", "rail", default="UIC60", show_default=True, metavar="FILE|UIC60",
+              help="Upright rail profile: SIMPACK .prr or 'y z' file in mm (depth at +z), "
+                   "or UIC60 for the analytic 60E1 head. The shipped MBench UIC60 file is "
+                   "already inclined 1:40: use it with --inclination none.")
+@click.option("--inclination", default="1:40", show_default=True, callback=_inclination,
+              help="Rail inclination: 1:40, 1:20, none, or a tangent in [0, 0.1].")
+@click.option("--gauge", default=1435.0, show_default=True, metavar="MM",
+              callback=_number_range("mm", 500.0, 2000.0), help="Track gauge (mm).")
+@click.option("--back-to-back", "back_to_back", default=1360.0, show_default=True,
+              metavar="MM", callback=_number_range("mm", 400.0, 2000.0),
+              help="Distance between the wheels' inner faces (mm).")
+@click.option("--r0", "r0", default=430.0, show_default=True, metavar="MM",
+              callback=_number_range("mm", 100.0, 1000.0),
+              help="Wheel radius at the tape circle (mm).")
+@click.option("--y-max", "y_max", default=12.0, show_default=True, metavar="MM",
+              callback=_number_range("mm", 0.1, 30.0),
+              help="Largest lateral wheelset displacement (mm).")
+@click.option("--step", "y_step", default=0.1, show_default=True, metavar="MM",
+              callback=_number_range("mm", 0.001, 1.0), help="Step of the displacement (mm).")
+@click.option("--amplitude", default=3.0, show_default=True, metavar="MM",
+              callback=_number_range("mm", 0.0, 30.0),
+              help="Amplitude of the equivalent conicity reported (mm).")
+@click.option("--png", "png_file", type=click.Path(dir_okay=False, path_type=Path),
+              help="Plot r_L, r_R, delta r, contact angles, roll and contact points.")
+@click.option("--csv", "csv_file", type=click.Path(dir_okay=False, path_type=Path),
+              help="Write the table (mm, rad, mrad).")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object (SI units).")
+def contact(
+    wheel: str, rail: str, inclination: float, gauge: float, back_to_back: float,
+    r0: float, y_max: float, y_step: float, amplitude: float, png_file: Path | None,
+    csv_file: Path | None, as_json: bool,
+) -> None:
+    """Contact geometry of a wheelset on its rails, and its equivalent conicity.
+
+    Rigid contact (minimum-distance search with the wheelset roll that keeps both wheels
+    on their rails) for lateral displacements within --y-max: rolling radii, their
+    difference, contact angles, roll and contact-point jumps (two-point contact). The
+    equivalent conicity follows EN 15302 (Annex B integration; Annex C regression).
+    Inputs and outputs in mm; --json in SI units.
+
+    \b
+    Examples:
+      railhunt contact --png s1002_uic60.png
+      railhunt contact --wheel worn.prw --inclination 1:20 --amplitude 2
+    """
+    from railhunt.contact.conicity import (
+        ConicityError,
+        equivalent_conicity,
+        equivalent_conicity_regression,
+    )
+    from railhunt.contact.geometry import contact_geometry
+    from railhunt.contact.profiles import read_profile, s1002, uic60
+
+    _check_outputs(png=png_file, csv=csv_file)
+    if y_step > y_max:
+        raise CliError(f"--step {y_step:g} mm is invalid: must be at most --y-max {y_max:g} mm")
+    with _user_input("--wheel: "):
+        w = s1002(step=1e-5) if wheel.upper() == "S1002" else read_profile(wheel, "wheel")
+    with _user_input("--rail: "):
+        r = uic60(0.0, step=1e-5) if rail.upper() == "UIC60" else read_profile(rail, "rail")
+    with _user_input():
+        geo = contact_geometry(
+            w, r, rail_inclination=inclination, gauge=gauge * 1e-3,
+            back_to_back=back_to_back * 1e-3, r0=r0 * 1e-3, y_max=y_max * 1e-3,
+            y_step=y_step * 1e-3,
+        )
+    try:
+        tan_ge = equivalent_conicity(geo.y, geo.delta_r, amplitude * 1e-3)
+        tan_reg = equivalent_conicity_regression(geo.y, geo.delta_r, amplitude * 1e-3)
+    except ConicityError as exc:
+        raise CliError(f"--amplitude {amplitude:g} mm: {exc}") from None
+    flange = geo.flange_contact_y()
+    jumps = [float(v) for v in geo.y[geo.jump]]
+    if csv_file is not None:
+        import numpy as np
+
+        with _user_input("cannot write --csv: "):
+            table = np.column_stack([
+                geo.y * 1e3, geo.r_left * 1e3, geo.r_right * 1e3, geo.delta_r * 1e3,
+                geo.delta_left, geo.delta_right, geo.roll * 1e3,
+                geo.wheel_left * 1e3, geo.wheel_right * 1e3, geo.jump.astype(int),
+            ])
+            np.savetxt(csv_file, table, delimiter=",", fmt="%.9g", comments="",
+                       header="y_mm,r_left_mm,r_right_mm,delta_r_mm,delta_left_rad,"
+                              "delta_right_rad,roll_mrad,wheel_left_mm,wheel_right_mm,jump")
+    if png_file is not None:
+        from railhunt.plots import plot_contact_geometry
+
+        with _user_input("cannot write --png: "):
+            plot_contact_geometry(geo, png_file)
+    if as_json:
+        data = {
+            "wheel": w.name, "rail": r.name, "rail_inclination": inclination,
+            "amplitude_m": amplitude * 1e-3,
+            "equivalent_conicity": tan_ge, "equivalent_conicity_regression": tan_reg,
+            "flange_contact_y_m": list(flange), "jump_y_m": jumps,
+            "y_m": geo.y.tolist(), "r_left_m": geo.r_left.tolist(),
+            "r_right_m": geo.r_right.tolist(), "delta_left_rad": geo.delta_left.tolist(),
+            "delta_right_rad": geo.delta_right.tolist(), "roll_rad": geo.roll.tolist(),
+        }
+        click.echo(json.dumps(_json_safe(data)))
+        return
+    i0 = int(abs(geo.y).argmin())
+    click.echo(f"{w.name} on {r.name}, inclination {inclination:.4g}, gauge {gauge:g} mm, "
+               f"back-to-back {back_to_back:g} mm")
+    click.echo(f"centred: r = {geo.r_left[i0] * 1e3:.3f} mm, contact angle "
+               f"{math.degrees(geo.delta_left[i0]):.2f} deg, contact points "
+               f"{geo.contact_distance[i0] * 1e3:.1f} mm apart")
+    click.echo(f"equivalent conicity at {amplitude:g} mm: {tan_ge:.4f} (EN 15302 Annex B), "
+               f"{tan_reg:.4f} (Annex C regression)")
+    fl = ", ".join("-" if math.isnan(v) else f"{v * 1e3:+.1f} mm" for v in flange)
+    click.echo(f"flange contact (contact angle > 45 deg) from y = {fl}")
+    if jumps:
+        click.echo("contact-point jumps at y = " + ", ".join(f"{v * 1e3:+.1f}" for v in jumps)
+                   + " mm")
