@@ -162,19 +162,45 @@ def _vehicle_options(func: Callable[..., Any]) -> Callable[..., Any]:
     func = click.option(
         "--vehicle",
         "vehicle_file",
-        metavar="FILE",
-        type=click.Path(exists=True, dir_okay=False, path_type=Path),
-        help="Vehicle TOML file (SI units). Default: the paper's high-speed vehicle (paper2019).",
+        metavar="FILE|NAME",
+        callback=_vehicle_source,
+        help="Vehicle TOML file (SI units), or the name of a vehicle shipped with railhunt "
+        "(paper2019, s1002_uic60: the paper's vehicle with S1002 wheels on UIC60 rails "
+        "1:40). Default: the paper's high-speed vehicle (paper2019).",
     )(func)
     return func
 
 
-def _build_vehicle(vehicle_file: Path | None, sets: dict[str, float]) -> Vehicle:
+def _vehicle_source(
+    ctx: click.Context, param: click.Parameter, value: str | None
+) -> Path | str | None:
+    """``--vehicle``: an existing file, else the name of a shipped vehicle."""
+    if value is None:
+        return None
+    path = Path(value)
+    if path.is_file():
+        return path
+    from railhunt.vehicle import shipped_vehicles
+
+    names = shipped_vehicles()
+    if value in names:
+        return value
+    raise click.BadParameter(
+        f"{value!r} is neither a file nor a shipped vehicle ({', '.join(names)})"
+    )
+
+
+def _build_vehicle(vehicle_file: Path | str | None, sets: dict[str, float]) -> Vehicle:
     """The vehicle of ``--vehicle`` (or paper2019) with the ``--set`` changes applied."""
     from railhunt.vehicle import Vehicle, load_vehicle
 
     with _user_input():
-        vehicle = Vehicle.paper2019() if vehicle_file is None else load_vehicle(vehicle_file)
+        if vehicle_file is None:
+            vehicle = Vehicle.paper2019()
+        elif isinstance(vehicle_file, str):
+            vehicle = Vehicle.shipped(vehicle_file)
+        else:
+            vehicle = load_vehicle(vehicle_file)
     if sets:
         given = ", ".join(f"{k}={v:g}" for k, v in sets.items())
         with _user_input(f"--set {given}: "):
