@@ -225,6 +225,30 @@ def _speed_count(from_kmh: float, to_kmh: float, step_kmh: float, most: int) -> 
     return n
 
 
+def _random_track_options(
+    default: str | None, spectrum_help: str, seed_context: str
+) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+    """Add ``--spectrum NAME`` and ``--seed N`` (a random track) to a command."""
+
+    def decorate(func: Callable[..., Any]) -> Callable[..., Any]:
+        func = click.option(
+            "--seed",
+            type=click.IntRange(min=0),
+            default=1,
+            show_default=True,
+            help=f"{seed_context} seed of the random track (same seed, same track).",
+        )(func)
+        return click.option(
+            "--spectrum",
+            default=default,
+            show_default=default is not None,
+            metavar="NAME",
+            help=spectrum_help,
+        )(func)
+
+    return decorate
+
+
 def _kmh_option(
     flag: str, dest: str, default: float, high: float, help: str
 ) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
@@ -446,20 +470,12 @@ def main() -> None:
     help="Instead of a track defect, start with all four wheelsets displaced "
     "laterally by this much (mm) on ideal track.",
 )
-@click.option(
-    "--spectrum",
-    default=None,
-    metavar="NAME",
-    help="Instead of a track defect, run over a random lateral alignment following this "
+@_random_track_options(
+    None,
+    "Instead of a track defect, run over a random lateral alignment following this "
     "track spectrum (german-low, german-high, fra-1 ... fra-6), long enough for the whole "
     "run, and report the acceptance-test instability criterion.",
-)
-@click.option(
-    "--seed",
-    type=click.IntRange(min=0),
-    default=1,
-    show_default=True,
-    help="With --spectrum: seed of the random track (same seed, same track).",
+    "With --spectrum:",
 )
 @click.option(
     "--irregularity",
@@ -755,21 +771,12 @@ def _linear_line(linear: Any) -> str:
 @_kmh_option("--tol", "tol_kmh", 1.0, 800.0,
              "Resolution of the bisection (km/h); at most --step.")  # fmt: skip
 @functools.partial(_method_options, stochastic=True)
-@click.option(
-    "--spectrum",
-    default="german-high",
-    show_default=True,
-    metavar="NAME",
-    help="With --method stochastic: track spectrum of the lateral alignment: german-low, "
+@_random_track_options(
+    "german-high",
+    "With --method stochastic: track spectrum of the lateral alignment: german-low, "
     "german-high (German high-speed spectra, low/high disturbance) or fra-1 ... fra-6 "
     "(US FRA track classes, 6 the best).",
-)
-@click.option(
-    "--seed",
-    type=click.IntRange(min=0),
-    default=1,
-    show_default=True,
-    help="With --method stochastic: seed of the random track (same seed, same track).",
+    "With --method stochastic:",
 )
 @click.option(
     "--track-length",
