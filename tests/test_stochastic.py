@@ -332,3 +332,14 @@ def test_sliding_rms_invariants(values, factor, window):
         assert np.all(rms >= 0) and np.all(rms <= np.max(np.abs(y)) + 1e-9)
         assert np.allclose(scaled, factor * rms, rtol=1e-9, atol=1e-9)
         assert np.all(np.diff(centres) > 0)
+
+
+def test_track_shorter_than_a_window_is_refused():
+    """A run covering less than one 100 m window cannot be judged: refused, not 'stable'."""
+    import railhunt
+
+    vehicle = railhunt.Vehicle.paper2019()
+    short = railhunt.track_irregularity("german-high", length=60.0, dx=0.25, seed=1,
+                                        band=(3.0, 30.0))
+    with pytest.raises(ValueError, match="irregularity length"):
+        railhunt.stochastic_critical_speed(vehicle, short)

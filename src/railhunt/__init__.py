@@ -31,6 +31,12 @@ from typing import Any
 
 __version__ = "0.1.0"
 
+# Before any numba function is defined: a cache folder per version of the sources (see
+# railhunt/_cache.py; numba alone would reuse code compiled from older equations).
+from railhunt import _cache  # noqa: E402
+
+NUMBA_CACHE = _cache.configure()
+
 _EXPORTS = {
     "Vehicle": "railhunt.vehicle",
     "load_vehicle": "railhunt.vehicle",

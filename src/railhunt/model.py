@@ -287,7 +287,9 @@ class Model:
         Tabulated contact geometry (uniform ``y`` grid) used instead of the vehicle's
         polynomials (Eqs. 32-33): ``r_L, r_R, delta_L, delta_R`` interpolated linearly in
         the compiled right-hand side, held constant beyond the table. The vehicle's ``r0``
-        (creepage reference) and ``a`` are still used.
+        (creepage reference) and ``a`` are still used. Default: the geometry of the
+        vehicle's :class:`railhunt.vehicle.ContactSpec` (its ``[contact]`` section) if it
+        has one, else the polynomials.
 
     Attributes
     ----------
@@ -306,6 +308,19 @@ class Model:
             )
         self.vehicle = vehicle
         self.creep_law = creep_law
+        if contact is None and vehicle.contact is not None:
+            contact = vehicle.contact.geometry()
+        if contact is not None:
+            # The creepages are measured from r0: a centred wheelset on a table whose
+            # radius differs from r0 would carry a steady longitudinal creepage that eats
+            # into the saturation of every creep force.
+            r_centre = float(np.interp(0.0, contact.y, contact.r_left))
+            if abs(r_centre - vehicle.r0) > 1e-6:
+                raise ValueError(
+                    f"r0 = {vehicle.r0!r} m is invalid with this contact geometry: must "
+                    f"equal its centred rolling radius {r_centre:.9f} m within 1 um "
+                    f"(set r0 = {r_centre!r})"
+                )
         self.contact = contact
         self.mass = mass_matrix_diagonal(vehicle)
         k_susp, self.C = assemble(suspension_elements(vehicle))

@@ -392,6 +392,9 @@ def plot_bifurcation_family(
         ax.grid(True, alpha=0.3)
         ax.set_xlabel("speed (km/h)", fontsize=8)
         ax.set_ylabel("y_w1 amplitude (mm)", fontsize=8)
+    return _save(fig, path)
+
+
 def plot_contact_geometry(geometry: object, path: str | os.PathLike[str]) -> Path:
     """Plot a wheelset's contact geometry against its lateral displacement (mm, deg, mrad).
 

@@ -25,6 +25,18 @@ Vehicle files are TOML::
     [parameters.K_d]            # table form; unit is optional but checked when given
     value = 2.0e7
     unit = "N/m"
+
+    [contact]                   # optional: tabulated contact geometry from profiles
+    wheel = "S1002"             # "S1002" (EN 13715) or a profile file (.prw, y z in mm)
+    rail = "UIC60"              # "UIC60" (60E1, upright) or an upright rail profile file
+    rail_inclination = 0.025    # 1:40
+    gauge = 1.435               # m
+    back_to_back = 1.36         # m
+    wheel_radius = 0.43         # m, at the tape circle
+
+Without ``[contact]`` the wheel/rail geometry is the paper's polynomials (Eqs. 32-33,
+parameters ``lambda1..5``, ``d0..d5``); with it, the compiled right-hand side interpolates
+the rigid contact geometry computed from the profiles (:class:`ContactSpec`).
 """
 
 import dataclasses
@@ -53,6 +65,7 @@ __all__ = [
     "UnknownParameterError",
     "Vehicle",
     "VehicleFileError",
+    "ContactSpec",
     "load_vehicle",
     "shipped_vehicles",
     "validate_all",
@@ -64,6 +77,8 @@ _VEHICLE_DIR = ("data", "vehicles")
 _DIMENSIONLESS = "1"
 _TABLE_KEYS = frozenset({"value", "unit", "meaning", "source"})
 _VEHICLE_KEYS = frozenset({"name", "description", "base"})
+_CONTACT_KEYS = frozenset({"wheel", "rail", "rail_inclination", "gauge", "back_to_back",
+                           "wheel_radius", "y_max", "y_step"})  # fmt: skip
 
 
 # --------------------------------------------------------------------------- formatting
@@ -574,6 +589,93 @@ def validate_all(params: Mapping[str, object]) -> dict[str, float]:
     return out
 
 
+# --------------------------------------------------------------------------- contact
+
+
+@dataclass(frozen=True)
+class ContactSpec:
+    """Wheel/rail contact geometry to compute from profiles (a vehicle file's ``[contact]``).
+
+    A vehicle with a ``ContactSpec`` runs on the tabulated rigid contact geometry of these
+    profiles (``r_L, r_R, delta_L, delta_R`` versus ``y``, interpolated in the compiled
+    right-hand side) instead of the paper's polynomials; see ``docs/contact.md``.
+
+    Parameters
+    ----------
+    wheel : str
+        ``"S1002"`` (analytic EN 13715 profile) or the path of a wheel profile file
+        (SIMPACK ``.prw`` or two columns ``y z`` in mm).
+    rail : str
+        ``"UIC60"`` (analytic 60E1 head, upright) or the path of an *upright* rail profile.
+    rail_inclination : float
+        Rail cant as a tangent, in [0, 0.1] (0.025 = 1:40, 0.05 = 1:20).
+    gauge : float
+        Track gauge (m), in [1.3, 1.8].
+    back_to_back : float
+        Distance between the wheels' inner faces (m), in [1.2, 1.75].
+    wheel_radius : float
+        Wheel radius at the tape circle (m), in [0.2, 0.8].
+    y_max, y_step : float
+        Half-range (m, in [0.005, 0.02]) and step (m, in [1e-5, 5e-4]) of the table.
+    """
+
+    wheel: str = "S1002"
+    rail: str = "UIC60"
+    rail_inclination: float = 0.025
+    gauge: float = 1.435
+    back_to_back: float = 1.36
+    wheel_radius: float = 0.43
+    y_max: float = 0.012
+    y_step: float = 1e-4
+
+    _RANGES = {"rail_inclination": (0.0, 0.1, ""), "gauge": (1.3, 1.8, "m"),
+               "back_to_back": (1.2, 1.75, "m"), "wheel_radius": (0.2, 0.8, "m"),
+               "y_max": (0.005, 0.02, "m"), "y_step": (1e-5, 5e-4, "m")}  # fmt: skip
+
+    def __post_init__(self) -> None:
+        for key in ("wheel", "rail"):
+            value = getattr(self, key)
+            if not isinstance(value, str) or not value.strip():
+                raise ValueError(f"contact {key} = {value!r} is invalid: must be a profile "
+                                 "name or a file path")  # fmt: skip
+        for key, (low, high, unit) in self._RANGES.items():
+            value = getattr(self, key)
+            if isinstance(value, bool) or not isinstance(value, numbers.Real) or not (
+                math.isfinite(value) and low <= value <= high
+            ):
+                raise ValueError(f"contact {key} = {value!r} {unit} is invalid: must be in "
+                                 f"[{low:g}, {high:g}] {unit}".replace("  ", " "))  # fmt: skip
+            object.__setattr__(self, key, float(value))
+        if self.gauge <= self.back_to_back:
+            raise ValueError(f"contact gauge = {self.gauge} m is invalid: must exceed "
+                             f"back_to_back = {self.back_to_back} m")  # fmt: skip
+
+    def geometry(self) -> Any:
+        """The rigid contact geometry of these profiles (computed once, then cached)."""
+        return _contact_geometry(self)
+
+    def toml_lines(self) -> list[str]:
+        """The ``[contact]`` section of a vehicle file."""
+        lines = ["", "[contact]", f"wheel = {_toml_string(self.wheel)}",
+                 f"rail = {_toml_string(self.rail)}"]  # fmt: skip
+        for key in self._RANGES:
+            lines.append(f"{key} = {getattr(self, key)!r}")
+        return lines
+
+
+@functools.lru_cache(maxsize=16)
+def _contact_geometry(spec: ContactSpec) -> Any:
+    from railhunt.contact.geometry import contact_geometry
+    from railhunt.contact.profiles import read_profile, s1002, uic60
+
+    wheel = s1002() if spec.wheel.upper() == "S1002" else read_profile(spec.wheel, "wheel")
+    rail = uic60() if spec.rail.upper() in ("UIC60", "60E1") else read_profile(spec.rail, "rail")
+    return contact_geometry(wheel, rail, rail_inclination=spec.rail_inclination,
+                            gauge=spec.gauge, back_to_back=spec.back_to_back,
+                            r0=spec.wheel_radius, y_max=spec.y_max,
+                            y_step=spec.y_step)  # fmt: skip
+
+
 # --------------------------------------------------------------------------- Vehicle
 
 
@@ -594,12 +696,15 @@ class Vehicle:
         Short identifier (non-empty).
     description : str
         Free text.
+    contact : ContactSpec, optional
+        Contact geometry from profiles (tabulated in the model); None: the polynomials.
     **parameters : float
         One keyword per parameter of :data:`PARAMETERS` (e.g. ``M_c`` in kg).
     """
 
     name: str = "custom"
     description: str = field(default="", compare=False)
+    contact: ContactSpec | None = None
 
     M_c: float
     M_t: float
@@ -660,6 +765,9 @@ class Vehicle:
             raise ValueError(f"vehicle name must be a non-empty string, got {self.name!r}")
         if not isinstance(self.description, str):
             raise ValueError(f"vehicle description must be a string, got {self.description!r}")
+        if self.contact is not None and not isinstance(self.contact, ContactSpec):
+            raise ValueError(f"vehicle contact must be a ContactSpec or None, got "
+                             f"{self.contact!r}")  # fmt: skip
         values = validate_all({name: getattr(self, name) for name in PARAMETERS})
         for name, value in values.items():
             object.__setattr__(self, name, value)
@@ -692,7 +800,8 @@ class Vehicle:
         """
         vehicle = _load_shipped(name)
         if type(vehicle) is not cls:  # subclass: rebuild as that class
-            return cls(name=vehicle.name, description=vehicle.description, **vehicle.as_dict())
+            return cls(name=vehicle.name, description=vehicle.description,
+                       contact=vehicle.contact, **vehicle.as_dict())  # fmt: skip
         return vehicle  # type: ignore[return-value]
 
     def replace(self, **changes: Any) -> Self:
@@ -718,7 +827,7 @@ class Vehicle:
             If a new value, or the resulting set, breaks a rule.
         """
         for key, value in changes.items():
-            if key in ("name", "description"):
+            if key in ("name", "description", "contact"):
                 continue
             if key in DERIVED:
                 raise DerivedParameterError(key, value)
@@ -808,6 +917,8 @@ class Vehicle:
                 f"unit = {_toml_string(spec.unit)}",
                 f"meaning = {_toml_string(spec.meaning)}",
             ]
+        if self.contact is not None:
+            lines += self.contact.toml_lines()
         return "\n".join(lines) + "\n"
 
 
@@ -908,12 +1019,13 @@ def _vehicle_from_data(
 
 
 def _build_vehicle(data: dict[str, Any], where: str, default_name: str, depth: int) -> Vehicle:
-    extra = set(data) - {"vehicle", "parameters"}
+    extra = set(data) - {"vehicle", "parameters", "contact"}
     if extra:
         raise VehicleFileError(
             f"{where}: unknown top-level key(s) {sorted(extra)}; "
-            "expected only [vehicle] and [parameters]"
+            "expected only [vehicle], [parameters] and [contact]"
         )
+    contact = _read_contact(data.get("contact"), where)
     meta = data.get("vehicle", {})
     if not isinstance(meta, dict):
         raise VehicleFileError(f"{where}: 'vehicle' must be a table")
@@ -947,7 +1059,10 @@ def _build_vehicle(data: dict[str, Any], where: str, default_name: str, depth: i
     if base_name is not None:
         if depth > 0:
             raise VehicleFileError(f"{where}: a shipped vehicle cannot itself have a base")
-        params: dict[str, float] = {**_load_shipped(base_name).as_dict(), **given}
+        base = _load_shipped(base_name)
+        params: dict[str, float] = {**base.as_dict(), **given}
+        if contact is None:
+            contact = base.contact
     else:
         missing = tuple(name for name in PARAMETERS if name not in given)
         if missing:
@@ -976,8 +1091,37 @@ def _build_vehicle(data: dict[str, Any], where: str, default_name: str, depth: i
     return Vehicle(
         name=meta.get("name", default_name),
         description=meta.get("description", ""),
+        contact=contact,
         **values,
     )
+
+
+def _read_contact(table: object, where: str) -> ContactSpec | None:
+    """The ``[contact]`` section; file paths relative to the vehicle file's folder."""
+    if table is None:
+        return None
+    if not isinstance(table, dict):
+        raise VehicleFileError(f"{where}: 'contact' must be a table")
+    bad = set(table) - _CONTACT_KEYS
+    if bad:
+        raise VehicleFileError(f"{where}: unknown key(s) {sorted(bad)} in [contact]; "
+                               f"allowed: {', '.join(sorted(_CONTACT_KEYS))}")  # fmt: skip
+    entries = dict(table)
+    folder = Path(where).parent
+    for key, names in (("wheel", ("S1002",)), ("rail", ("UIC60", "60E1"))):
+        value = entries.get(key)
+        if isinstance(value, str) and value.upper() not in names:
+            path = Path(value)
+            if not path.is_absolute():
+                path = folder / path
+            if not path.is_file():
+                raise VehicleFileError(f"{where}: [contact] {key} = {value!r} is neither "
+                                       f"{' nor '.join(names)} nor an existing file")  # fmt: skip
+            entries[key] = str(path.resolve())
+    try:
+        return ContactSpec(**entries)
+    except (TypeError, ValueError) as exc:
+        raise VehicleFileError(f"{where}: [contact]: {exc}") from None
 
 
 def _read_entry(name: str, entry: object, unit: str, meaning: str) -> float:

@@ -21,6 +21,7 @@ apart, with a tolerance explained there.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -29,6 +30,7 @@ import numpy as np
 
 from railhunt.analysis.linear import eigenvalues, hunting_mode_index, linear_critical_speed
 from railhunt.analysis.periodic import (
+    MIN_STATE,
     PHASE_INDEX,
     STATE_SCALE,
     PeriodicOrbit,
@@ -39,9 +41,6 @@ from railhunt.model import N_STATE, Y_W1, Model
 from railhunt.vehicle import Vehicle
 
 HOPF_TYPES = ("subcritical", "supercritical-a", "supercritical-b")
-#: Smallest largest scaled state entry of an orbit (1e-2: 10 micrometres or 0.1 mm/s);
-#: below it the corrector has fallen onto the equilibrium.
-MIN_STATE = 1e-2
 __all__ = ["HOPF_TYPES", "BifurcationDiagram", "Branch", "Fold", "bifurcation_diagram",
            "bifurcation_family",
            "classify_hopf"]
@@ -152,16 +151,20 @@ class BifurcationDiagram:
         Frequency of the hunting eigenvalue at the Hopf point (Hz).
     fold_speed_kmh : float
         Lowest speed with a limit cycle on any branch: the nonlinear critical speed. Equal
-        to the Hopf speed when no branch reaches below it.
+        to the Hopf speed when no branch reaches below it; NaN when a branch leaves the
+        range downward (``fold_below_range``: the lowest cycle lies below the range).
     hopf_type : str
         One of ``"subcritical"``, ``"supercritical-a"``, ``"supercritical-b"`` (module
         docstring).
     speed_range_kmh : tuple of float
         The range the continuation was confined to.
     complete : bool
-        False when a branch stopped early (Newton failure at the smallest step).
+        False when a branch stopped early (Newton failure at the smallest step, or the
+        point budget ran out).
     message : str
         Why each branch stopped.
+    fold_below_range : bool
+        True when a branch leaves the speed range downward.
     """
 
     branches: list[Branch]
@@ -173,6 +176,7 @@ class BifurcationDiagram:
     speed_range_kmh: tuple[float, float]
     complete: bool
     message: str
+    fold_below_range: bool = False
 
     @property
     def folds(self) -> list[Fold]:
@@ -204,6 +208,7 @@ class BifurcationDiagram:
                         "speed_kmh": _none_if_nan(self.point_p_kmh(point_p_amplitude))},
             "folds": [{"speed_kmh": f.speed_kmh, "amplitude": f.amplitude} for f in self.folds],
             "speed_range_kmh": list(self.speed_range_kmh),
+            "fold_below_range": self.fold_below_range,
             "complete": self.complete,
             "message": self.message,
             "branches": [b.to_dict() for b in self.branches],
@@ -278,9 +283,15 @@ class _Tracer:
         return t / np.linalg.norm(t)
 
     def trace(self, u0: np.ndarray, lin0: tuple, tangent: np.ndarray, ds: float,
-              budget: int) -> tuple[list[PeriodicOrbit], str, bool]:  # fmt: skip
-        """Follow the branch from ``u0`` along ``tangent``; returns the new orbits."""
-        lim, shoot, iy = self.limits, self.shoot, self.iy
+              budget: int, limits: _Limits | None = None,
+              ) -> tuple[list[PeriodicOrbit], str, bool, bool]:  # fmt: skip
+        """Follow the branch from ``u0`` along ``tangent``.
+
+        Returns the new orbits, why it stopped, whether it stopped normally (False: Newton
+        failed at the smallest step or the point budget ran out) and whether it left the
+        speed range downward (the branch goes on below the range).
+        """
+        lim, shoot, iy = limits or self.limits, self.shoot, self.iy
         orbits: list[PeriodicOrbit] = []
         u_prev, lin = u0, lin0
         ds_min, ds_max = 1e-3, 50.0
@@ -314,18 +325,20 @@ class _Tracer:
                     break
                 ds *= 0.5
             if not ok:
-                return orbits, "Newton failed at the smallest step", False
+                return orbits, "Newton failed at the smallest step", False, False
             orbit, lin = self.solve(u_new, norm, it)
             orbits.append(orbit)
             u_prev = u_new
             ds *= 1.4 if it <= 4 else 0.7 if it > 6 else 1.0
             going_down = tangent[-1] < 0
             v_kmh = orbit.speed_kmh
-            if (v_kmh < lim.lo and going_down) or (v_kmh > lim.hi and not going_down):
-                return orbits, "left the speed range", True
+            if v_kmh < lim.lo and going_down:
+                return orbits, "left the speed range downward", True, True
+            if v_kmh > lim.hi and not going_down:
+                return orbits, "left the speed range upward", True, False
             if orbit.amplitude > lim.max_amplitude:
-                return orbits, f"amplitude above {lim.max_amplitude * 1e3:g} mm", True
-        return orbits, f"used its {budget} points", True
+                return orbits, f"amplitude above {lim.max_amplitude * 1e3:g} mm", True, False
+        return orbits, f"used all its {budget} points (incomplete)", False, False
 
 
 def _make_branch(orbits: list[PeriodicOrbit], origin: str,
@@ -350,10 +363,14 @@ def _make_branch(orbits: list[PeriodicOrbit], origin: str,
     dv = np.diff(speed_a)
     for i in range(1, dv.size):
         if dv[i - 1] * dv[i] < 0:
-            c = np.polyfit([-1.0, 0.0, 1.0], speed_a[i - 1:i + 2], 2)
-            s_turn = float(np.clip(-c[1] / (2 * c[0]), -1.0, 1.0)) if c[0] != 0 else 0.0
+            # Parabola of speed against the distance along the branch in the (speed / 10
+            # km/h, amplitude / 1 mm) plane, through the three points around the turn.
+            seg = np.hypot(dv[i - 1:i + 1] / 10.0, np.diff(amp_a[i - 1:i + 2]) / 1e-3)
+            dist = np.array([-seg[0], 0.0, seg[1]])
+            c = np.polyfit(dist, speed_a[i - 1:i + 2], 2)
+            s_turn = float(np.clip(-c[1] / (2 * c[0]), dist[0], dist[2])) if c[0] != 0 else 0.0
             v_turn = float(np.polyval(c, s_turn))
-            a_turn = float(np.interp(s_turn, [-1.0, 0.0, 1.0], amp_a[i - 1:i + 2]))
+            a_turn = float(np.interp(s_turn, dist, amp_a[i - 1:i + 2]))
             folds.append(Fold(v_turn, a_turn, i))
     return Branch(speed_a, amp_a, np.array(period), np.array(stable, dtype=bool),
                   np.array(mmax), np.array(wamp), origin, folds, list(orbits))  # fmt: skip
@@ -363,7 +380,7 @@ def bifurcation_diagram(
     vehicle: Vehicle,
     speed_range_kmh: tuple[float, float] = (200.0, 500.0),
     max_amplitude: float = 0.015,
-    max_points: int = 300,
+    max_points: int = 600,
     max_step_kmh: float = 5.0,
     max_step_amplitude: float = 4e-4,
     seed_amplitudes: tuple[float, ...] = (0.008,),
@@ -374,11 +391,12 @@ def bifurcation_diagram(
 ) -> BifurcationDiagram:
     """Bifurcation diagram of the vehicle: branches of limit cycles versus speed.
 
-    The Hopf branch is followed from the Hopf point. So that a branch of large cycles not
-    connected to it within the range is not missed, the vehicle is also simulated at the
-    top of the range from each of ``seed_amplitudes`` (an initial lateral displacement of
-    all wheelsets); a cycle it settles on that lies on no branch yet is refined by
-    shooting and followed both ways.
+    The Hopf branch is followed from the Hopf point (over the range widened to 10 km/h
+    around the Hopf point). So that a branch of large cycles not connected to it within
+    the range is not missed, the vehicle is also simulated from each of ``seed_amplitudes``
+    (an initial lateral displacement of all wheelsets) at the top of the range and, if that
+    is below the Hopf point, 10 km/h above the Hopf point; a cycle it settles on that lies
+    on no branch yet is refined by shooting and followed both ways.
 
     Parameters
     ----------
@@ -461,41 +479,58 @@ def bifurcation_diagram(
     hopf_from_orbits = float(np.polyfit(a_small, v_small, 2)[-1])
 
     # 2. The Hopf branch by pseudo-arclength continuation.
+    # The Hopf branch is followed over the range widened to 10 km/h around the Hopf point,
+    # so that its type is known even when the Hopf point lies outside the range.
     tangent = small[-1][0] - small[-2][0]
     ds = float(np.linalg.norm(tangent))
-    more, msg, complete = tracer.trace(small[-1][0], small[-1][2], tangent / ds, ds,
-                                       limits.max_points)  # fmt: skip
+    hopf_limits = dataclasses.replace(limits, lo=min(lo, hopf - 10.0), hi=max(hi, hopf + 10.0))
+    more, msg, complete, below = tracer.trace(small[-1][0], small[-1][2], tangent / ds, ds,
+                                              limits.max_points, hopf_limits)  # fmt: skip
     branches = [_make_branch([o for _, o, _ in small] + more, "hopf", (hopf, period0))]
     messages = [f"Hopf branch: {msg}"]
 
-    # 3. Branches of large cycles found by simulation.
+    # 3. Branches of large cycles found by simulation: at the top of the range and, when
+    # that is below the Hopf point, also just above it (where every disturbance grows to
+    # a cycle, while near a fold the large cycles' basins can be too small to reach).
+    seed_speeds = [hi] + ([min(hopf + 10.0, 2.0 * hi)] if hopf + 10.0 > hi else [])
     for amp in seed_amplitudes:
-        found = _seed_orbit(model, shoot, hi, amp)
-        if found is None:
-            continue
-        u_c, orbit_c, lin_c = found
-        if any(_on_branch(b, orbit_c) for b in branches):
-            continue
-        if on_point is not None:
-            on_point(orbit_c)
-        jac = shoot.jacobian(u_c, lin=lin_c)
-        t0 = np.zeros(u_c.size)
-        t0[-1] = 1.0
-        t0 = tracer.null_vector(jac, t0)
-        parts = []
-        for sign in (-1.0, 1.0):
-            part, msg, ok = tracer.trace(u_c, lin_c, sign * t0, 0.5, limits.max_points)
-            parts.append(part)
-            complete &= ok
-            messages.append(f"branch from {amp * 1e3:g} mm ({'down' if sign < 0 else 'up'}): {msg}")
-        orbits = parts[0][::-1] + [orbit_c] + parts[1]
-        branches.append(_make_branch(orbits, "simulation"))
+        for seed_kmh in seed_speeds:
+            found = _seed_orbit(model, shoot, seed_kmh, amp)
+            if found is None:
+                continue
+            u_c, orbit_c, lin_c = found
+            if any(_on_branch(b, orbit_c) for b in branches):
+                continue
+            if on_point is not None:
+                on_point(orbit_c)
+            jac = shoot.jacobian(u_c, lin=lin_c)
+            t0 = np.zeros(u_c.size)
+            t0[-1] = 1.0
+            t0 = tracer.null_vector(jac, t0)
+            seed_limits = dataclasses.replace(limits, hi=max(hi, seed_kmh))
+            parts = []
+            for sign in (-1.0, 1.0):
+                part, msg, ok, out_low = tracer.trace(u_c, lin_c, sign * t0, 0.5,
+                                                      limits.max_points, seed_limits)  # fmt: skip
+                parts.append(part)
+                complete &= ok
+                below |= out_low
+                messages.append(f"branch from {amp * 1e3:g} mm at {seed_kmh:g} km/h "
+                                f"({'down' if sign < 0 else 'up'}): {msg}")  # fmt: skip
+            branches.append(_make_branch(parts[0][::-1] + [orbit_c] + parts[1], "simulation"))
+            break
 
     hopf_type = classify_hopf(branches[0], hopf)
-    lowest = min([hopf] + [float(np.min(b.speed_kmh)) for b in branches]
-                 + [f.speed_kmh for b in branches for f in b.folds])  # fmt: skip
+    if below:  # a branch goes on below the range: its lowest cycle is not known
+        lowest = math.nan
+        messages.append(f"a branch leaves the range below {lo:g} km/h: the lowest limit "
+                        "cycle is below the range (fold_speed_kmh is NaN)")  # fmt: skip
+    else:
+        lowest = min([hopf] + [float(np.min(b.speed_kmh)) for b in branches]
+                     + [f.speed_kmh for b in branches for f in b.folds])  # fmt: skip
     return BifurcationDiagram(branches, hopf, hopf_from_orbits, linear.frequency_hz, lowest,
-                              hopf_type, (lo, hi), complete, "; ".join(messages))  # fmt: skip
+                              hopf_type, (lo, hi), complete, "; ".join(messages),
+                              fold_below_range=below)  # fmt: skip
 
 
 def classify_hopf(branch: Branch, hopf_kmh: float, tol_kmh: float | None = None) -> str:
@@ -522,7 +557,9 @@ def classify_hopf(branch: Branch, hopf_kmh: float, tol_kmh: float | None = None)
         running_max = np.maximum.accumulate(speed[above[0]:])
         if np.any(running_max - speed[above[0]:] > tol):
             return "supercritical-a"
-    return "supercritical-b"
+        return "supercritical-b"
+    # The branch never left the tolerance band (cut short): judge by where it ended.
+    return "subcritical" if speed[-1] < hopf_kmh else "supercritical-b"
 
 
 def _on_branch(branch: Branch, orbit: PeriodicOrbit, rel: float = 0.02) -> bool:

@@ -79,7 +79,8 @@ class HuntingFrequency:
         else the limit cycle's (``orbit_frequency_hz`` where shooting converged, otherwise
         ``fft_frequency_hz``).
     source : str
-        ``"eigenvalue"`` or ``"limit-cycle"``.
+        ``"eigenvalue"``, ``"limit-cycle"``, or ``"limit-exceeded"`` when the run left the
+        derailment limit (or diverged) before settling: no frequency (NaN).
     verdict : str
         ``"stable"`` (the disturbance decays) or ``"hunting"``.
     amplitude : float
@@ -124,6 +125,11 @@ class HuntingFrequency:
             value = getattr(self, key)
             out[key] = None if isinstance(value, float) and math.isnan(value) else value
         return out
+
+
+def judgement_window_max(judgement: Judgement | None) -> float:
+    """Longest record a release can produce (s)."""
+    return (judgement or Judgement()).max_duration
 
 
 def _release(model: Model, speed: float, amplitude: float, judgement: Judgement, dt: float,
@@ -173,7 +179,9 @@ def hunting_frequency(
     judgement : Judgement, optional
         Decay/limit-cycle thresholds (defaults of :class:`Judgement`).
     fft_window : float
-        Length of the record's end analysed by the FFT (s), > 1.
+        Length of the record's end analysed by the FFT (s), at least 4 s (about 15 cycles:
+        the peak refinement is then accurate to a few % of a bin) and at most the longest
+        record.
     sample_rate : float
         Fixed rate the record is resampled to by linear interpolation before the FFT (Hz).
     refine : bool
@@ -195,8 +203,9 @@ def hunting_frequency(
         raise ValueError(
             f"initial_amplitude = {initial_amplitude!r} m is invalid: must be in (0, 0.02] m"
         )
-    if not (math.isfinite(fft_window) and fft_window > 1):
-        raise ValueError(f"fft_window = {fft_window!r} s is invalid: must be > 1 s")
+    if not (math.isfinite(fft_window) and 4 <= fft_window <= judgement_window_max(judgement)):
+        raise ValueError(f"fft_window = {fft_window!r} s is invalid: must be in [4, "
+                         f"{judgement_window_max(judgement):g}] s")  # fmt: skip
     if not (math.isfinite(sample_rate) and sample_rate >= 20):
         raise ValueError(f"sample_rate = {sample_rate!r} Hz is invalid: must be >= 20 Hz")
     judgement = judgement or Judgement()
@@ -213,7 +222,7 @@ def hunting_frequency(
     if verdict == STABLE:
         return HuntingFrequency(speed_kmh, f_eig, "eigenvalue", STABLE, 0.0, f_eig, zeta,
                                 math.nan, math.nan, t, y, vd, v_u)  # fmt: skip
-    f_fft, f_orbit, amp = math.nan, math.nan, math.nan
+    f_fft, f_orbit = math.nan, math.nan
     if code == 0:
         # Resample the end of the record to a fixed step (the paper's linear interpolation).
         t_end = t[-1]
@@ -224,13 +233,18 @@ def hunting_frequency(
             k = phase_origin(t, y)
             try:
                 orbit = periodic_orbit(model, speed_kmh, x[k], 1.0 / f_fft, dt=dt)
-                if abs(orbit.frequency_hz - f_fft) < 0.1 * f_fft:
+                # Accept the refined orbit only if it is the simulated cycle.
+                if (abs(orbit.frequency_hz - f_fft) < 0.1 * f_fft
+                        and abs(orbit.amplitude - amp) < 0.2 * amp):  # fmt: skip
                     f_orbit, amp = orbit.frequency_hz, orbit.amplitude
             except RuntimeError:
                 pass
-    f = f_orbit if math.isfinite(f_orbit) else f_fft
-    return HuntingFrequency(speed_kmh, f, "limit-cycle", HUNTING, amp, f_eig, zeta, f_fft,
-                            f_orbit, t, y, vd, v_u)  # fmt: skip
+        f = f_orbit if math.isfinite(f_orbit) else f_fft
+        return HuntingFrequency(speed_kmh, f, "limit-cycle", HUNTING, amp, f_eig, zeta, f_fft,
+                                f_orbit, t, y, vd, v_u)  # fmt: skip
+    # The run left the track (derailment limit) or diverged: no frequency.
+    return HuntingFrequency(speed_kmh, math.nan, "limit-exceeded", HUNTING, math.nan, f_eig,
+                            zeta, math.nan, math.nan, t, y, vd, v_u)  # fmt: skip
 
 
 def frequency_jump(speeds_kmh: np.ndarray, frequency_hz: np.ndarray,

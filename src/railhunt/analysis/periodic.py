@@ -47,6 +47,9 @@ _F0 = 34
 STATE_SCALE = np.concatenate([np.full(17, 1e-3), np.full(17, 1e-2), np.full(4, 1e3)])
 #: Relative finite-difference step (times STATE_SCALE).
 FD_STEP = 1e-5
+#: Smallest largest scaled state entry of an orbit (1e-2: 10 micrometres or 0.1 mm/s);
+#: below it a solution of the shooting equations is the equilibrium, not a cycle.
+MIN_STATE = 1e-2
 
 
 @njit(cache=True)
@@ -92,21 +95,34 @@ def flow(x0, horizon, n_steps, locate, v, lin, bd, dd, dpar, wr, trk, trs, sampl
     for step in range(n_steps):
         t = step * h
         remaining = h
-        for _sub in range(16):
+        sub = 0
+        while remaining > 1e-12 * h:
             rk4_step(t, x, remaining, v, lin, bd, dd, dpar, wr, trk, trs,
-                      k1, k2, k3, k4, tmp, xn)  # fmt: skip
+                     k1, k2, k3, k4, tmp, xn)  # fmt: skip
             crossing = -1
             theta = 1.0
-            if locate:
+            b_hi = 1.0
+            b_shi = 0.0
+            if locate and sub < 16:  # after 16 switchings in one step: finish it plainly
                 for d in range(4):
                     fu = dpar[d, 3]
-                    s0 = abs(x[_F0 + d]) - fu
-                    s1 = abs(xn[_F0 + d]) - fu
-                    if abs(s0) > 1e-9 * fu and s0 * s1 < 0.0:
-                        th = s0 / (s0 - s1)
-                        if th < theta:
-                            theta = th
-                            crossing = d
+                    f0 = x[_F0 + d]
+                    f1 = xn[_F0 + d]
+                    s0 = abs(f0) - fu
+                    s1 = abs(f1) - fu
+                    if abs(s0) <= 1e-9 * fu:
+                        continue  # starts on the switching surface
+                    if s0 * s1 < 0.0:
+                        th, hi_d, shi_d = s0 / (s0 - s1), 1.0, s1
+                    elif s0 > 0.0 and s1 > 0.0 and f0 * f1 < 0.0:
+                        # Through the whole band |F| < F_u within the step (tiny F_u): the
+                        # first crossing lies before F = 0, where |F| - F_u = -F_u.
+                        hi_d = f0 / (f0 - f1)
+                        th, shi_d = hi_d * s0 / (s0 + fu), -fu
+                    else:
+                        continue
+                    if th < theta:
+                        theta, crossing, b_hi, b_shi = th, d, hi_d, shi_d
             if crossing < 0:
                 for i in range(n):
                     x[i] = xn[i]
@@ -114,15 +130,15 @@ def flow(x0, horizon, n_steps, locate, v, lin, bd, dd, dpar, wr, trk, trs, sampl
             # Regula falsi (Illinois) for the step fraction where |F| = F_u.
             fu = dpar[crossing, 3]
             lo, slo = 0.0, abs(x[_F0 + crossing]) - fu
-            hi, shi = 1.0, abs(xn[_F0 + crossing]) - fu
+            hi, shi = b_hi, b_shi
             th = theta
             side = 0
-            for _it in range(30):
+            for it in range(30):
                 rk4_step(t, x, th * remaining, v, lin, bd, dd, dpar, wr, trk, trs,
-                          k1, k2, k3, k4, tmp, xt)  # fmt: skip
+                         k1, k2, k3, k4, tmp, xt)  # fmt: skip
                 st = abs(xt[_F0 + crossing]) - fu
-                if abs(st) <= 1e-9 * fu:
-                    break
+                if abs(st) <= 1e-9 * fu or it == 29:
+                    break  # th is the fraction xt was computed with
                 if st * slo < 0.0:
                     hi, shi = th, st
                     if side == -1:
@@ -137,10 +153,9 @@ def flow(x0, horizon, n_steps, locate, v, lin, bd, dd, dpar, wr, trk, trs, sampl
             for i in range(n):
                 x[i] = xt[i]
             n_switch += 1
+            sub += 1
             t += th * remaining
             remaining *= 1.0 - th
-            if remaining <= 1e-12 * h:
-                break
         for j in range(ns):
             samples[step + 1, j] = x[j]
     return x, n_switch
@@ -468,6 +483,11 @@ def periodic_orbit(
         raise RuntimeError(
             f"shooting did not converge at {speed_kmh:.1f} km/h "
             f"(scaled residual {norm:.2e} after {it} iterations)"
+        )
+    if np.max(np.abs(w[:-1])) < MIN_STATE:
+        raise RuntimeError(
+            f"shooting at {speed_kmh:.1f} km/h fell onto the equilibrium (which solves the "
+            "shooting equations for any period): no limit cycle near the guess"
         )
     return shoot.orbit(np.append(w, vs), norm, it)
 

@@ -20,8 +20,8 @@ characteristics of railway vehicles*, stability criteria (ΣY filtered f0 ± 2 H
 rms; limits half the peak limits ``10 + P0/3`` kN, ``P0 = 2*Q0`` the axle load, and
 ``12 - M+/5`` m/s²); the same table is reproduced in the GENSYS course notes "Acceptance
 test according to UIC 518 and EN 14363" (gensys.se/course/UIC518_tests.html). The filter
-is a 4th-order Butterworth band-pass applied forwards and backwards (zero phase); the
-standard fixes the pass band, not the filter order.
+is a Butterworth band-pass (4th-order prototype, i.e. 8th-order band-pass) applied
+forwards and backwards (zero phase); the standard fixes the pass band, not the order.
 
 The instability frequency ``f0`` is, unless given, the frequency of the largest peak of
 the Welch PSD of the leading wheelset's ΣY between 0.5 Hz and 15 Hz (the hunting mode of
@@ -120,11 +120,21 @@ class Assessment:
         """True when either rms exceeds its limit, or the run derailed or diverged."""
         if self.status != "ok":
             return True
+        if not self.evaluated:
+            raise ValueError("the criterion was not evaluated: the run is shorter than one "
+                             f"{WINDOW_LENGTH:g} m window")  # fmt: skip
         return self.sum_y_ratio > 1.0 or self.acceleration_ratio > 1.0
 
     @property
+    def evaluated(self) -> bool:
+        """True when the run covered at least one sliding window (the criterion has values)."""
+        return bool(self.sum_y_rms.size and self.acceleration_rms.size)
+
+    @property
     def verdict(self) -> str:
-        """``"unstable"`` or ``"stable"``."""
+        """``"unstable"``, ``"stable"`` or ``"not evaluated"`` (run shorter than a window)."""
+        if self.status == "ok" and not self.evaluated:
+            return "not evaluated"
         return UNSTABLE if self.unstable else STABLE
 
 
@@ -146,7 +156,12 @@ def dominant_frequency(
 
 
 def band_pass(y: np.ndarray, fs: float, f0: float, half_band: float = HALF_BAND) -> np.ndarray:
-    """Zero-phase 4th-order Butterworth band-pass ``f0 ± half_band`` (Hz) of samples at ``fs``."""
+    """Zero-phase Butterworth band-pass ``f0 ± half_band`` (Hz) of samples at ``fs``.
+
+    ``scipy.signal.butter(4, ..., btype="bandpass")``: a 4th-order prototype, 8th-order
+    band-pass; applied forwards and backwards (``sosfiltfilt``), so the magnitude response
+    is squared and the phase is zero.
+    """
     lo = max(f0 - half_band, 0.3)
     hi = min(f0 + half_band, 0.45 * fs)
     if not lo < hi:
@@ -240,6 +255,22 @@ def assess(
 assess_stability = assess
 
 
+def check_track_length(track: SampledTrack, model: Model) -> None:
+    """Raise ``ValueError`` when a run over ``track`` is shorter than one rms window.
+
+    The run lasts until the last wheelset leaves the section, so it covers
+    ``track.end() + wheelbase`` metres; with less than one 100 m window the criterion
+    cannot be evaluated, and no verdict (least of all "stable") can be given.
+    """
+    covered = track.end() + float(model.wheelset_offsets()[-1])
+    if covered < WINDOW_LENGTH:
+        raise ValueError(
+            f"irregularity length = {track.end():.1f} m is invalid: a run over it covers "
+            f"{covered:.1f} m, less than one {WINDOW_LENGTH:g} m window of the criterion; give at "
+            f"least {WINDOW_LENGTH - float(model.wheelset_offsets()[-1]):.1f} m of track"
+        )
+
+
 def run_on_track(
     vehicle: Vehicle, speed_kmh: float, track: SampledTrack, model: Model | None = None,
     dt: float | None = None, output_dt: float = 2e-3, f0_hz: float | None = None,
@@ -251,6 +282,7 @@ def run_on_track(
     """
     model = model or Model(vehicle)
     speed = speed_kmh / 3.6
+    check_track_length(track, model)
     duration = (track.end() + model.wheelset_offsets()[-1]) / speed
     res = simulate(
         vehicle, speed_kmh, duration=duration, excitation=track, dt=dt,
@@ -335,6 +367,7 @@ def stochastic_critical_speed(
     if f0_hz is not None and not (math.isfinite(f0_hz) and 0.5 <= f0_hz <= 50.0):
         raise ValueError(f"f0_hz = {f0_hz!r} Hz is invalid: must be finite and in [0.5, 50] Hz")
     model = Model(vehicle, creep_law=creep_law)
+    check_track_length(irregularity, model)
     trials: list[Assessment] = []
 
     def unstable(speed_kmh: float) -> bool:

@@ -164,9 +164,10 @@ def _vehicle_options(func: Callable[..., Any]) -> Callable[..., Any]:
         "vehicle_file",
         metavar="FILE|NAME",
         callback=_vehicle_source,
-        help="Vehicle TOML file (SI units), or the name of a vehicle shipped with railhunt "
-        "(paper2019, s1002_uic60: the paper's vehicle with S1002 wheels on UIC60 rails "
-        "1:40). Default: the paper's high-speed vehicle (paper2019).",
+        help="Vehicle TOML file (SI units), or the name of a vehicle shipped with railhunt: "
+        "paper2019; s1002_uic60 (the paper's vehicle with S1002 wheels on UIC60 rails 1:40, "
+        "fitted polynomials); s1002_uic60_table (the same with the contact geometry "
+        "tabulated from the profiles). Default: paper2019.",
     )(func)
     return func
 

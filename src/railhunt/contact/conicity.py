@@ -77,8 +77,13 @@ def _potential(y: np.ndarray, d: np.ndarray, yc: float):
     return lambda x: integral(x) - base
 
 
-def _turning_points(y: np.ndarray, d: np.ndarray, amplitude: float) -> tuple[float, float, float]:
-    """Centre and the two turning points whose half-distance is ``amplitude``."""
+def _turning_points(y: np.ndarray, d: np.ndarray, amplitude: float,
+                    limit_only: bool = False) -> tuple[float, float, float]:  # fmt: skip
+    """Centre and the two turning points whose half-distance is ``amplitude``.
+
+    With ``limit_only``, return ``(limit, nan, nan)`` instead: the largest half-distance
+    (amplitude, m) whose oscillation stays inside the table.
+    """
     yc = _centre(y, d)
     pot = _potential(y, d, yc)
     lo, hi = y[0], y[-1]
@@ -99,6 +104,14 @@ def _turning_points(y: np.ndarray, d: np.ndarray, amplitude: float) -> tuple[flo
         return math.inf if math.isnan(ym) else 0.5 * (y_plus - ym) - amplitude
 
     top = hi
+    if limit_only:
+        if math.isinf(excess(top)):
+            a, b = yc, hi
+            for _ in range(80):
+                m = 0.5 * (a + b)
+                a, b = (m, b) if not math.isinf(excess(m)) else (a, m)
+            top = a
+        return excess(top) + amplitude, math.nan, math.nan
     if excess(top) < 0 or math.isinf(excess(top)):
         # find the largest y_plus with a partner inside the table
         if math.isinf(excess(top)):
@@ -122,11 +135,8 @@ def _turning_points(y: np.ndarray, d: np.ndarray, amplitude: float) -> tuple[flo
 def max_amplitude(y: np.ndarray, delta_r: np.ndarray) -> float:
     """Largest amplitude (m) whose whole oscillation stays inside the table."""
     y, d = _table(y, delta_r)
-    try:
-        _turning_points(y, d, 1e3)
-    except ConicityError as exc:
-        return float(str(exc).split("at most ")[1].split(" mm")[0]) * 1e-3
-    return math.inf
+    limit, _, _ = _turning_points(y, d, 1e3, limit_only=True)
+    return float(limit) * (1.0 - 1e-12)  # rounded down: always accepted
 
 
 def equivalent_conicity(

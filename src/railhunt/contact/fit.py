@@ -187,11 +187,14 @@ def s1002_uic60_parameters(normal_load: float = 10900.0 * 9.8 / 2.0,
     return params, fit, geometry
 
 
-def s1002_uic60_toml() -> str:
+def s1002_uic60_toml(table: bool = False) -> str:
     """Text of the shipped ``s1002_uic60.toml``: paper2019 with profile-based contact.
 
     Every parameter of the paper's vehicle, with ``r0, a, lambda1..5, d0, d1, d4, d5,
-    f11, f22, f23, f33`` replaced by :func:`s1002_uic60_parameters`.
+    f11, f22, f23, f33`` replaced by :func:`s1002_uic60_parameters`. With ``table=True``,
+    the text of ``s1002_uic60_table.toml``: the same parameters plus a ``[contact]``
+    section, so that the model interpolates the contact geometry of the profiles instead
+    of the fitted polynomials.
     """
     import tomllib
     from importlib import resources
@@ -231,9 +234,10 @@ def s1002_uic60_toml() -> str:
         "# SI units throughout. Each parameter: value (SI), unit, meaning, source.",
         "",
         "[vehicle]",
-        'name = "s1002_uic60"',
+        'name = "s1002_uic60_table"' if table else 'name = "s1002_uic60"',
         'description = "paper2019 vehicle, S1002 wheels on UIC60 rails 1:40 '
-        '(profile-based contact geometry)"',
+        + ('(contact geometry tabulated from the profiles)"' if table else
+           '(profile-based contact geometry)"'),
     ]
     for name, entry in base["parameters"].items():
         value = params.get(name, entry["value"])
@@ -243,6 +247,14 @@ def s1002_uic60_toml() -> str:
         lines += ["", f"[parameters.{name}]", f"value = {float(value)!r}",
                   f'unit = "{entry["unit"]}"', "meaning = " + _quote(mean),
                   "source = " + _quote(src)]
+    if table:
+        from railhunt.vehicle import ContactSpec
+
+        lines += ["", "# The model interpolates this contact geometry (the lambda and d",
+                  "# polynomials above are then not used)."]
+        lines += ContactSpec(wheel="S1002", rail="UIC60", rail_inclination=1.0 / 40.0,
+                             gauge=1.435, back_to_back=1.36, wheel_radius=0.43)\
+            .toml_lines()[1:]
     return "\n".join(lines) + "\n"
 
 

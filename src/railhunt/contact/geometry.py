@@ -10,7 +10,11 @@ usual 2-D contact table of vehicle dynamics).
 
 Track frame: ``Y`` lateral, positive to the left; ``Z`` upward. A wheelset displaced by
 ``y > 0`` moves toward the left rail, so the left wheel runs toward its flange:
-``r_L`` grows and ``delta_r = r_L - r_R > 0``. Roll is positive when the left wheel rises.
+``r_L`` grows and ``delta_r = r_L - r_R > 0``. The reported roll follows the model's body
+roll (``docs/model.md``): positive when a point above the axle moves toward +y, i.e. when
+the left wheel *drops*; a wheelset displaced to the left lifts its left wheel (larger
+radius), so there ``roll < 0``. (Internally the search works with the opposite angle,
+positive when the left wheel rises.)
 Contact angles ``delta_L``, ``delta_R`` are the inclinations of the contact planes,
 positive when the contact normal on the wheel leans toward the track centre (the usual
 tread and flange case), as in the paper's Eq. 33.
@@ -44,7 +48,8 @@ class ContactGeometry:
     delta_left, delta_right : numpy.ndarray
         Contact angles (rad).
     roll : numpy.ndarray
-        Wheelset roll angle (rad), positive when the left wheel rises.
+        Wheelset roll angle (rad), the model's sign: positive when the left wheel drops
+        (a point above the axle moves toward +y); negative for ``y > 0``.
     contact_left, contact_right : numpy.ndarray, shape (n, 2)
         Contact points in the track frame, ``(Y, Z)`` (m).
     wheel_left, wheel_right, rail_left, rail_right : numpy.ndarray
@@ -263,7 +268,7 @@ def contact_geometry(
     }
     return ContactGeometry(
         y=ys, r_left=out["rl"], r_right=out["rr"], delta_left=out["dl"],
-        delta_right=out["dr"], roll=out["roll"],
+        delta_right=out["dr"], roll=-out["roll"],
         contact_left=np.column_stack([out["yl"], out["zl"]]),
         contact_right=np.column_stack([out["yr"], out["zr"]]),
         wheel_left=out["wl"], wheel_right=out["wr"], rail_left=out["tl"],
