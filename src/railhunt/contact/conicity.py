@@ -103,29 +103,22 @@ def _turning_points(y: np.ndarray, d: np.ndarray, amplitude: float,
         ym = partner(y_plus)
         return math.inf if math.isnan(ym) else 0.5 * (y_plus - ym) - amplitude
 
+    # The largest y_plus whose partner lies inside the table.
     top = hi
+    if math.isinf(excess(top)):
+        a, b = yc, hi
+        for _ in range(80):
+            m = 0.5 * (a + b)
+            a, b = (m, b) if not math.isinf(excess(m)) else (a, m)
+        top = a
     if limit_only:
-        if math.isinf(excess(top)):
-            a, b = yc, hi
-            for _ in range(80):
-                m = 0.5 * (a + b)
-                a, b = (m, b) if not math.isinf(excess(m)) else (a, m)
-            top = a
         return excess(top) + amplitude, math.nan, math.nan
-    if excess(top) < 0 or math.isinf(excess(top)):
-        # find the largest y_plus with a partner inside the table
-        if math.isinf(excess(top)):
-            a, b = yc, hi
-            for _ in range(80):
-                m = 0.5 * (a + b)
-                a, b = (m, b) if not math.isinf(excess(m)) else (a, m)
-            top = a
-        if excess(top) < -1e-9 * amplitude:
-            raise ConicityError(
-                f"amplitude = {amplitude * 1e3:.4g} mm is invalid: the delta_r table "
-                f"(y in [{lo * 1e3:.4g}, {hi * 1e3:.4g}] mm, centre {yc * 1e3:.4g} mm) supports "
-                f"at most {(excess(top) + amplitude) * 1e3:.4g} mm"
-            )
+    if excess(top) < -1e-9 * amplitude:
+        raise ConicityError(
+            f"amplitude = {amplitude * 1e3:.4g} mm is invalid: the delta_r table "
+            f"(y in [{lo * 1e3:.4g}, {hi * 1e3:.4g}] mm, centre {yc * 1e3:.4g} mm) supports "
+            f"at most {(excess(top) + amplitude) * 1e3:.4g} mm"
+        )
     if excess(top) <= 0.0:  # amplitude at the table's limit (within rounding)
         return yc, top, partner(top)
     y_plus = brentq(excess, yc + 1e-12, top, xtol=1e-15, rtol=1e-13)
