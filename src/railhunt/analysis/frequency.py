@@ -127,11 +127,6 @@ class HuntingFrequency:
         return out
 
 
-def judgement_window_max(judgement: Judgement | None) -> float:
-    """Longest record a release can produce (s)."""
-    return (judgement or Judgement()).max_duration
-
-
 def _release(model: Model, speed: float, amplitude: float, judgement: Judgement, dt: float,
              output_dt: float):  # fmt: skip
     """Simulate from all wheelsets displaced by ``amplitude`` until the verdict is clear."""
@@ -203,12 +198,12 @@ def hunting_frequency(
         raise ValueError(
             f"initial_amplitude = {initial_amplitude!r} m is invalid: must be in (0, 0.02] m"
         )
-    if not (math.isfinite(fft_window) and 4 <= fft_window <= judgement_window_max(judgement)):
+    judgement = judgement or Judgement()
+    if not (math.isfinite(fft_window) and 4 <= fft_window <= judgement.max_duration):
         raise ValueError(f"fft_window = {fft_window!r} s is invalid: must be in [4, "
-                         f"{judgement_window_max(judgement):g}] s")  # fmt: skip
+                         f"{judgement.max_duration:g}] s")  # fmt: skip
     if not (math.isfinite(sample_rate) and sample_rate >= 20):
         raise ValueError(f"sample_rate = {sample_rate!r} Hz is invalid: must be >= 20 Hz")
-    judgement = judgement or Judgement()
     model = model or Model(vehicle, creep_law=creep_law)
     speed = speed_kmh / 3.6
     eig = eigen_analysis(vehicle, [speed_kmh], creep_law=creep_law)

@@ -227,11 +227,21 @@ def _speed_count(from_kmh: float, to_kmh: float, step_kmh: float, most: int) -> 
 
 
 def _random_track_options(
-    default: str | None, spectrum_help: str, seed_context: str
+    default: str | None, spectrum_help: str, seed_context: str, irregularity_help: str
 ) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
-    """Add ``--spectrum NAME`` and ``--seed N`` (a random track) to a command."""
+    """Add ``--spectrum NAME``, ``--seed N`` (a random track) and ``--irregularity FILE``
+    (a measured one) to a command."""
 
     def decorate(func: Callable[..., Any]) -> Callable[..., Any]:
+        func = click.option(
+            "--irregularity",
+            "irregularity_file",
+            type=click.Path(exists=True, dir_okay=False, path_type=Path),
+            metavar="FILE",
+            help=f"{irregularity_help} (CSV with columns 'distance' and 'alignment', units "
+            "[m] or [mm] in the header; shifted to start at 0 m and faded in and out over "
+            "20 m).",
+        )(func)
         func = click.option(
             "--seed",
             type=click.IntRange(min=0),
@@ -477,15 +487,7 @@ def main() -> None:
     "track spectrum (german-low, german-high, fra-1 ... fra-6), long enough for the whole "
     "run, and report the acceptance-test instability criterion.",
     "With --spectrum:",
-)
-@click.option(
-    "--irregularity",
-    "irregularity_file",
-    type=click.Path(exists=True, dir_okay=False, path_type=Path),
-    metavar="FILE",
-    help="Instead of a track defect, run over this measured alignment (CSV with columns "
-    "'distance' and 'alignment', units [m] or [mm] in the header; shifted to start at "
-    "0 m and faded in and out over 20 m).",
+    "Instead of a track defect, run over this measured alignment",
 )
 @_method_options
 @click.option(
@@ -778,6 +780,7 @@ def _linear_line(linear: Any) -> str:
     "german-high (German high-speed spectra, low/high disturbance) or fra-1 ... fra-6 "
     "(US FRA track classes, 6 the best).",
     "With --method stochastic:",
+    "With --method stochastic: run over this measured alignment instead",
 )
 @click.option(
     "--track-length",
@@ -787,15 +790,6 @@ def _linear_line(linear: Any) -> str:
     metavar="M",
     callback=_number_range("m", 200.0, 1e5, low_open=False),
     help="With --method stochastic: length of the irregular track run over at each speed (m).",
-)
-@click.option(
-    "--irregularity",
-    "irregularity_file",
-    type=click.Path(exists=True, dir_okay=False, path_type=Path),
-    metavar="FILE",
-    help="With --method stochastic: run over this measured alignment instead (CSV with "
-    "columns 'distance' and 'alignment', units [m] or [mm] in the header; shifted to "
-    "start at 0 m and faded in and out over 20 m).",
 )
 @click.option(
     "--json",
