@@ -1,0 +1,223 @@
+"""``railhunt sweep``: parameter studies written point by point, on all cores or a cluster."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import click
+import numpy as np
+
+from railhunt.cli import (
+    CliError,
+    _build_vehicle,
+    _check_outputs,
+    _fmt,
+    _json_safe,
+    _show_progress,
+    _stdout_console,
+    _user_input,
+    _vehicle_options,
+    main,
+)
+
+_SWEEP_HELP = """\
+Critical speeds and hunting frequency over a range of vehicle parameters.
+
+\b
+Each NAME is a vehicle parameter ('railhunt parameters' lists them) and
+takes its own --from/--to/--num, in the order given (one --num applies to
+all). Values are SI, as in --set (N*s/m, N/m, N, -). Every point runs the
+nonlinear critical-speed search (8 mm defect, bisection to 1 km/h), the
+linear critical speed (Hopf point) and the hunting frequency after a 3 mm
+release (at 300 km/h for the yaw-damper parameters C_d1, C_d2, K_d, F_u and
+350 km/h for the others, as in the paper; --frequency-speed overrides).
+
+\b
+Designs: 'lines' (default) sweeps each NAME alone, the others at their
+nominal values (the paper's Figs. 10-11); 'grid' runs every combination;
+'random' and 'lhs' (Latin hypercube) draw --samples points in the ranges
+--from..--to with --seed.
+
+\b
+The points run in parallel on all cores (a local Dask cluster), or on a
+Dask cluster with --scheduler ADDRESS. Each point is written to --out as it
+finishes (.csv; .parquet with pyarrow). After Ctrl-C, a killed process or
+a lost worker, run the same command with --resume: only the missing points
+are computed. Identical inputs give identical files.
+
+\b
+Examples:
+  railhunt sweep C_d1 --from 20e3 --to 1000e3 --num 21 --out cd1.csv
+  railhunt sweep f11 --from 2e6 --to 11e6 --num 10 --tie f22=f11 --out f11.csv
+  railhunt sweep C_d1 --from 100e3 --to 600e3 K_d --from 1e6 --to 20e6 \\
+      --num 5 --design grid --out grid.csv
+  railhunt sweep mu --from 0.05 --to 0.5 --num 10 --out mu.csv --resume
+"""
+
+
+def _parse_ties(ctx: click.Context, param: click.Parameter,
+                items: tuple[str, ...]) -> dict[str, tuple[str, float]]:  # fmt: skip
+    """``--tie f22=f11`` or ``--tie f22=0.9*f11``."""
+    out: dict[str, tuple[str, float]] = {}
+    for item in items:
+        follower, sep, rhs = item.partition("=")
+        factor_text, star, leader = rhs.rpartition("*")
+        try:
+            factor = float(factor_text) if star else 1.0
+        except ValueError:
+            factor = math.nan
+        follower, leader = follower.strip(), leader.strip()
+        if not sep or not follower or not leader or not math.isfinite(factor):
+            raise click.BadParameter(f"{item!r} is not of the form FOLLOWER=LEADER or "
+                                     "FOLLOWER=FACTOR*LEADER, e.g. --tie f22=f11")  # fmt: skip
+        out[follower] = (leader, factor)
+    return out
+
+
+def _pair(names: tuple[str, ...], option: str, values: tuple, default: object = None) -> list:
+    """The per-NAME values of a repeatable option (one value applies to every NAME)."""
+    if not values:
+        if default is None:
+            raise CliError(f"{option} is missing: give one per NAME ({', '.join(names)})")
+        return [default] * len(names)
+    if len(values) == 1:
+        return list(values) * len(names)
+    if len(values) != len(names):
+        raise CliError(f"{option} is given {len(values)} times for {len(names)} NAMEs "
+                       f"({', '.join(names)}): give it once, or once per NAME")  # fmt: skip
+    return list(values)
+
+
+def _ranges(names, froms, tos, nums, spacing, design):
+    """NAME -> SI values (lines, grid) or (low, high) (random, lhs)."""
+    if len(set(names)) != len(names):
+        raise CliError(f"a NAME is given twice: {', '.join(names)}")
+    lows = _pair(names, "--from", froms)
+    highs = _pair(names, "--to", tos)
+    counts = _pair(names, "--num", nums, default=11)
+    out: dict[str, object] = {}
+    for name, lo, hi, n in zip(names, lows, highs, counts, strict=True):
+        if not (math.isfinite(lo) and math.isfinite(hi)) or hi < lo:
+            raise CliError(f"{name}: --from {lo:g} --to {hi:g} is not a range (need from <= to)")
+        if design in ("random", "lhs"):
+            out[name] = (lo, hi)
+            continue
+        if not 1 <= n <= 100_000:
+            raise CliError(f"{name}: --num {n} is invalid: must be in [1, 100000]")
+        if spacing == "log":
+            if lo <= 0:
+                raise CliError(f"{name}: --spacing log needs --from > 0, got {lo:g}")
+            out[name] = np.geomspace(lo, hi, n) if n > 1 else np.array([lo])
+        else:
+            out[name] = np.linspace(lo, hi, n) if n > 1 else np.array([lo])
+    return out
+
+
+@main.command(help=_SWEEP_HELP, short_help="Parameter study: critical speeds and frequency.")
+@click.argument("names", nargs=-1, required=True, metavar="NAME [NAME2 ...]")
+@click.option("--from", "froms", type=float, multiple=True, metavar="VALUE",
+              help="Start of NAME's range (SI), once per NAME.")
+@click.option("--to", "tos", type=float, multiple=True, metavar="VALUE",
+              help="End of NAME's range (SI), once per NAME.")
+@click.option("--num", "nums", type=int, multiple=True, metavar="N",
+              help="Values per NAME including both ends (once, or once per NAME) [default: 11].")
+@click.option("--spacing", type=click.Choice(["linear", "log"]), default="linear",
+              show_default=True, help="Spacing of the values of 'lines' and 'grid'.")
+@click.option("--design", type=click.Choice(["lines", "grid", "random", "lhs"]), default="lines",
+              show_default=True, help="How the NAMEs are combined (see above).")
+@click.option("--samples", type=int, metavar="N", help="Points of a random or lhs design.")
+@click.option("--seed", type=int, default=0, show_default=True,
+              help="Seed of a random or lhs design.")
+@click.option("--tie", "ties", multiple=True, callback=_parse_ties, metavar="F=L",
+              help="F follows L at every point: f22=f11, or f22=0.9*f11 (repeatable).")
+@click.option("--outputs", default="critical_speed,linear_critical_speed,hunting_frequency",
+              show_default=True, metavar="LIST",
+              help="Comma-separated outputs per point.")
+@click.option("--frequency-speed", "frequency_kmh", type=float, metavar="KMH",
+              help="Speed of the hunting-frequency run (km/h) [default: 300 for yaw-damper "
+                   "parameters, 350 otherwise].")
+@click.option("--out", "out", type=click.Path(dir_okay=False, path_type=Path), required=True,
+              metavar="FILE", help="Results file (.csv, or .parquet with pyarrow).")
+@click.option("--resume", is_flag=True, help="Continue FILE: compute only its missing points.")
+@click.option("--overwrite", is_flag=True, help="Replace FILE if it exists.")
+@click.option("--workers", type=int, metavar="N",
+              help="Worker processes on this machine [default: all cores; 1: no Dask].")
+@click.option("--scheduler", metavar="ADDRESS",
+              help="Run on the Dask cluster of this scheduler (e.g. tcp://10.0.0.5:8786).")
+@click.option("--json", "as_json", is_flag=True, help="Print a JSON summary instead of a table.")
+@_vehicle_options
+def sweep(names, froms, tos, nums, spacing, design, samples, seed, ties, outputs,
+          frequency_kmh, out, resume, overwrite, workers, scheduler, as_json, vehicle_file,
+          sets) -> None:  # fmt: skip
+    """``railhunt sweep`` (help text: _SWEEP_HELP)."""
+    from railhunt.studies.store import OUTPUTS, ResultFileError
+    from railhunt.studies.sweep import sweep as run_sweep
+
+    if resume and overwrite:
+        raise CliError("--resume and --overwrite exclude each other")
+    if scheduler and workers is not None:
+        raise CliError("--workers sets the local cluster; a --scheduler cluster has its own")
+    chosen = tuple(o.strip() for o in outputs.split(",") if o.strip())
+    bad = [o for o in chosen if o not in OUTPUTS]
+    if bad or not chosen:
+        raise CliError(f"--outputs {outputs}: choose from {', '.join(OUTPUTS)}")
+    _check_outputs(out=out)
+    vehicle = _build_vehicle(vehicle_file, sets)
+    parameters = _ranges(names, froms, tos, nums, spacing, design)
+    progress = _show_progress()
+    try:
+        with _user_input():
+            result = run_sweep(vehicle, parameters, chosen, design=design, samples=samples,
+                               seed=seed, ties=ties, frequency_speed_kmh=frequency_kmh, out=out,
+                               resume=resume, overwrite=overwrite, scheduler=scheduler,
+                               workers=workers, progress=progress)  # fmt: skip
+    except ResultFileError as exc:
+        raise CliError(str(exc)) from None
+    except KeyboardInterrupt:
+        from railhunt.studies.store import read_results
+
+        done = len(read_results(out)) if out.exists() else 0
+        click.echo(f"railhunt: interrupted: {done} points are in {out}; run the same command "
+                   "with --resume to finish", err=True)  # fmt: skip
+        raise SystemExit(130) from None
+    if as_json:
+        click.echo(json.dumps(_json_safe({
+            "file": str(out), "points": result.meta["points"], "computed": result.computed,
+            "resumed": result.resumed, "lost": result.lost, "elapsed_s": result.elapsed_s,
+            "rows": result.rows}), indent=1))  # fmt: skip
+    else:
+        _print_summary(result, out)
+    if result.lost:
+        click.echo(f"railhunt: {result.lost} points were lost ({result.lost_reasons[0]}); run "
+                   "the same command with --resume to compute them", err=True)  # fmt: skip
+        raise SystemExit(1)
+
+
+def _print_summary(result, out: Path) -> None:
+    from rich.table import Table
+
+    console = _stdout_console()
+    rate = result.computed / result.elapsed_s if result.elapsed_s > 0 else math.nan
+    console.print(f"{result.meta['points']} points in {out}: {result.computed} computed "
+                  f"({_fmt(rate, '.2f', 'points/s')}), {result.resumed} already there, "
+                  f"{result.lost} lost; {result.elapsed_s:.1f} s")  # fmt: skip
+    if len(result.rows) > 40:
+        return
+    cols = result.columns
+    table = Table()
+    params = result.parameters
+    shown = [(c, head, spec) for c, head, spec in (
+        ("critical_speed_kmh", "V_cr km/h", ".0f"),
+        ("linear_critical_speed_kmh", "V_lin km/h", ".1f"),
+        ("linear_frequency_hz", "f_lin Hz", ".2f"),
+        ("hunting_frequency_hz", "f Hz", ".2f")) if c in cols]  # fmt: skip
+    source = "frequency_source" in cols
+    for head in (*params, *(h for _, h, _ in shown), *(["source"] if source else []), "status"):
+        table.add_column(head, justify="right")
+    for row in result.rows:
+        table.add_row(*(f"{row[p]:.6g}" for p in params),
+                      *(_fmt(row[c], spec) for c, _, spec in shown),
+                      *([row["frequency_source"]] if source else []), row["status"])  # fmt: skip
+    console.print(table)

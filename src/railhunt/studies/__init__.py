@@ -1,0 +1,1 @@
+"""Parameter studies: sweep designs, parallel execution, result files, Table 1 sections."""

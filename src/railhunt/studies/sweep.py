@@ -1,0 +1,280 @@
+"""Parameter sweeps: critical speeds and hunting frequency over a design of vehicles.
+
+Every point of a design (see :mod:`railhunt.studies.design`) is one vehicle; each is
+evaluated by :func:`evaluate_point` with the same analyses the rest of railhunt uses
+(:func:`railhunt.critical_speed`, :func:`railhunt.linear_critical_speed`,
+:func:`railhunt.hunting_frequency`), in parallel (:mod:`railhunt.studies.execute`), and
+written to a results file as it finishes (:mod:`railhunt.studies.store`).
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import time
+from collections.abc import Callable, Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from railhunt.studies.design import Point, build_design, frequency_speed, parse_ties
+from railhunt.studies.execute import progress_bar, run_tasks
+from railhunt.studies.store import (
+    OUTPUTS,
+    STATUS_FAILED,
+    STATUS_NO_CRITICAL_SPEED,
+    STATUS_OK,
+    ResultStore,
+    SweepResults,
+    columns_for,
+)
+from railhunt.track import SingleDefect
+from railhunt.vehicle import Vehicle
+
+
+def _critical_speed_message(result: Any) -> str:
+    verdicts = {t.verdict for t in result.trials}
+    speeds = [t.speed_kmh for t in result.trials]
+    if verdicts == {"stable"}:
+        return f"stable at every speed tried, up to {max(speeds):g} km/h"
+    if verdicts == {"hunting"}:
+        return f"hunting at every speed tried, down to {min(speeds):g} km/h"
+    return "the search did not bracket a change of verdict"
+
+
+def evaluate_point(
+    point: Point,
+    vehicle: Vehicle,
+    outputs: Sequence[str] = OUTPUTS,
+    frequency_speed_kmh: float = 350.0,
+    excitation: object = None,
+    creep_law: str = "heuristic",
+) -> dict[str, Any]:
+    """Evaluate one point of a study: the results row of ``vehicle`` changed by the point.
+
+    Parameters
+    ----------
+    point : Point
+        The parameter values (SI) of this point.
+    vehicle : Vehicle
+        Nominal vehicle.
+    outputs : sequence of str
+        Any of ``"critical_speed"`` (nonlinear, by bisection with ``excitation``),
+        ``"linear_critical_speed"`` (Hopf point) and ``"hunting_frequency"`` (at
+        ``frequency_speed_kmh`` from a 3 mm release of every wheelset).
+    frequency_speed_kmh : float
+        Speed of the hunting-frequency run (km/h).
+    excitation : SingleDefect, optional
+        Excitation of the critical-speed search (default: its 8 mm defect).
+    creep_law : str
+        See :class:`railhunt.model.Model`.
+
+    Returns
+    -------
+    dict
+        One results row (see :func:`railhunt.studies.store.columns_for`). An analysis
+        that raises makes the row ``status="failed"`` with the error as ``message``.
+    """
+    from railhunt.analysis.critical import critical_speed
+    from railhunt.analysis.frequency import hunting_frequency
+    from railhunt.analysis.linear import linear_critical_speed
+
+    row: dict[str, Any] = {"point": point.index, "line": point.line, **point.values}
+    for name in outputs:
+        if name == "hunting_frequency":
+            row.update(frequency_speed_kmh=float(frequency_speed_kmh),
+                       hunting_frequency_hz=math.nan, frequency_source="")  # fmt: skip
+        elif name == "critical_speed":
+            row["critical_speed_kmh"] = math.nan
+        else:
+            row.update(linear_critical_speed_kmh=math.nan, linear_frequency_hz=math.nan)
+    status, message = STATUS_OK, ""
+    try:
+        v = vehicle.replace(**point.values)
+        if "critical_speed" in outputs:
+            res = critical_speed(v, excitation, creep_law=creep_law)
+            row["critical_speed_kmh"] = float(res.speed_kmh)
+            if not res.bracketed:
+                status, message = STATUS_NO_CRITICAL_SPEED, _critical_speed_message(res)
+        if "linear_critical_speed" in outputs:
+            lin = linear_critical_speed(v, creep_law=creep_law)
+            row["linear_critical_speed_kmh"] = float(lin.speed_kmh)
+            row["linear_frequency_hz"] = float(lin.frequency_hz)
+        if "hunting_frequency" in outputs:
+            hf = hunting_frequency(v, frequency_speed_kmh, creep_law=creep_law)
+            row["hunting_frequency_hz"] = float(hf.frequency_hz)
+            row["frequency_source"] = hf.source
+    except Exception as exc:  # noqa: BLE001 - one bad point must not end a study
+        status, message = STATUS_FAILED, f"{type(exc).__name__}: {exc}"
+    row["status"], row["message"] = status, message
+    return row
+
+
+def _task(point: Point, vehicle: Vehicle, outputs: tuple[str, ...], speeds: dict[int, float],
+          excitation: object, creep_law: str) -> dict[str, Any]:  # fmt: skip
+    return evaluate_point(point, vehicle, outputs, speeds[point.index], excitation, creep_law)
+
+
+def warm_up() -> None:
+    """Load (or compile) every numba function a point uses, in this process."""
+    from railhunt.analysis.frequency import hunting_frequency
+
+    hunting_frequency(Vehicle.paper2019(), 400.0)  # simulation, eigenvalues and shooting
+
+
+def _json_values(values: object) -> object:
+    arr = np.asarray(values, dtype=float)
+    return [float(v) for v in arr.ravel()]
+
+
+def sweep(
+    vehicle: Vehicle,
+    parameters: Mapping[str, object],
+    outputs: Sequence[str] = OUTPUTS,
+    *,
+    design: str = "lines",
+    samples: int | None = None,
+    seed: int = 0,
+    ties: Mapping[str, object] | None = None,
+    frequency_speed_kmh: float | None = None,
+    excitation: object = None,
+    creep_law: str = "heuristic",
+    out: str | Path | None = None,
+    resume: bool = False,
+    overwrite: bool = False,
+    client: Any = None,
+    scheduler: str | None = None,
+    workers: int | None = None,
+    progress: bool | Callable[[int, int], None] = False,
+) -> SweepResults:
+    """Run a parameter study: critical speeds and hunting frequency at every point.
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        Nominal vehicle.
+    parameters : Mapping
+        Parameter name -> SI values (``lines``, ``grid``), or ``(low, high)``
+        (``random``, ``lhs``). E.g. ``{"C_d1": np.linspace(20e3, 1000e3, 21)}``.
+    outputs : sequence of str
+        Any of ``"critical_speed"``, ``"linear_critical_speed"``, ``"hunting_frequency"``.
+    design : {"lines", "grid", "random", "lhs"}
+        One parameter at a time, full factorial, uniform random or Latin hypercube
+        (:func:`railhunt.studies.design.build_design`).
+    samples : int, optional
+        Points of a ``random`` or ``lhs`` design.
+    seed : int
+        Seed of the random designs (the same seed gives the same points).
+    ties : Mapping, optional
+        Parameters that follow another, e.g. ``{"f22": "f11"}`` (the paper's f22 = f11)
+        or ``{"f22": ("f11", 0.9)}``.
+    frequency_speed_kmh : float, optional
+        Speed of the hunting-frequency run (km/h); default the paper's: 300 km/h for lines
+        of yaw-damper parameters (C_d1, C_d2, K_d, F_u), 350 km/h otherwise.
+    excitation : SingleDefect, optional
+        Excitation of the critical-speed search (default 8 mm, 20 m defect).
+    creep_law : str
+        See :class:`railhunt.model.Model`.
+    out : path-like, optional
+        Results file (``.csv``; ``.parquet`` with pyarrow), written as points finish.
+    resume : bool
+        Continue ``out``: compute only the points it lacks.
+    overwrite : bool
+        Replace an existing ``out``.
+    client : dask.distributed.Client, optional
+        Run on this Dask cluster.
+    scheduler : str, optional
+        Address of a Dask scheduler to join.
+    workers : int, optional
+        Worker processes of the local cluster (default: all cores; 1 runs in this process).
+    progress : bool or callable
+        Show a progress bar (points done, rate, time left) on stderr, or call
+        ``progress(done, total)`` after each point.
+
+    Returns
+    -------
+    SweepResults
+        Rows sorted by point, with the counts of points computed, resumed and lost.
+    """
+    outputs = tuple(outputs)
+    bad = [o for o in outputs if o not in OUTPUTS]
+    if bad or not outputs:
+        raise ValueError(f"outputs = {list(outputs)!r} is invalid: choose one or more of "
+                         f"{', '.join(OUTPUTS)}")  # fmt: skip
+    if frequency_speed_kmh is not None and not (math.isfinite(frequency_speed_kmh)
+                                                and 0 < frequency_speed_kmh <= 1000):  # fmt: skip
+        raise ValueError(f"frequency_speed_kmh = {frequency_speed_kmh!r} km/h is invalid: must "
+                         "be in (0, 1000] km/h")  # fmt: skip
+    if excitation is None:
+        excitation = SingleDefect()
+    tie_map = parse_ties(ties)
+    points = build_design(vehicle, parameters, design, samples, seed, ties)
+    for p in points:  # every combination must make a valid vehicle, before any work starts
+        vehicle.replace(**p.values)
+    names = list(parameters)
+    param_cols = list(points[0].values)
+    speeds = {p.index: frequency_speed(p, names, frequency_speed_kmh) for p in points}
+    meta: dict[str, Any] = {
+        "railhunt": _version(),
+        "vehicle": {"name": vehicle.name, "parameters": vehicle.as_dict(),
+                    "contact": repr(vehicle.contact)},  # fmt: skip
+        "design": design,
+        "parameters": {n: (_json_values(parameters[n])) for n in names},
+        "samples": samples,
+        "seed": seed if design in ("random", "lhs") else None,
+        "ties": {f: [lf[0], lf[1]] for f, lf in tie_map.items()},
+        "outputs": list(outputs),
+        "frequency_speed_kmh": frequency_speed_kmh,
+        "excitation": repr(excitation),
+        "creep_law": creep_law,
+        "points": len(points),
+        "parameter_columns": param_cols,
+        "columns": columns_for(param_cols, outputs),
+    }
+    start = time.perf_counter()
+    store = ResultStore(out, meta, resume=resume, overwrite=overwrite) if out else None
+    rows: dict[int, dict[str, Any]] = dict(store.rows) if store else {}
+    resumed = len(rows)
+    todo = [p for p in points if p.index not in rows]
+    task = functools.partial(_task, vehicle=vehicle, outputs=outputs, speeds=speeds,
+                             excitation=excitation, creep_law=creep_law)  # fmt: skip
+    bar = progress_bar() if progress is True else None
+    bar_task = None
+    if bar is not None:
+        bar.start()
+        bar_task = bar.add_task("sweep", total=len(points), completed=resumed)
+
+    def on_result(row: dict[str, Any]) -> None:
+        rows[row["point"]] = row
+        if store is not None:
+            store.write(row)
+        if bar is not None:
+            bar.advance(bar_task)
+        elif callable(progress):
+            progress(len(rows), len(points))
+
+    lost: list[tuple[Any, str]] = []
+    complete = False
+    try:
+        lost = run_tasks(task, todo, on_result, client=client, scheduler=scheduler,
+                         workers=workers, warm_up=warm_up if todo else None)  # fmt: skip
+        complete = len(rows) == len(points)
+    finally:
+        if bar is not None:
+            bar.stop()
+        if store is not None:
+            store.close(complete)
+    result = SweepResults([rows[k] for k in sorted(rows)], meta, Path(out) if out else None)
+    result.computed = len(rows) - resumed
+    result.resumed = resumed
+    result.lost = len(lost)
+    result.lost_reasons = [reason for _, reason in lost]
+    result.elapsed_s = time.perf_counter() - start
+    return result
+
+
+def _version() -> str:
+    from railhunt import __version__
+
+    return __version__
