@@ -36,6 +36,7 @@ from railhunt.suspension import N_DOF
 SPEED_KMH = 350.0
 DURATION = 10.0
 Y_AGREEMENT = 1e-6  # m: baseline vs railhunt DOPRI5, final y_w1
+SWEEP_SPEEDUP = 1.7  # sweep throughput of 2 workers over 1 (issue 5)
 
 COLD_SNIPPET = (
     "import time; t=time.time(); import railhunt; v=railhunt.Vehicle.paper2019(); "
@@ -156,6 +157,24 @@ def cold_start() -> float:
 # --------------------------------------------------------------------------------------
 
 
+def sweep_rate(vehicle: railhunt.Vehicle, workers: int) -> tuple[float, int]:
+    """Seconds and points of a 24-point study (C_d1 and K_px lines, every output) on a
+    local Dask cluster of ``workers`` processes."""
+    from distributed import Client, LocalCluster
+
+    from railhunt.studies.sweep import warm_up
+
+    warm_up()
+    study = {"C_d1": np.linspace(50e3, 600e3, 12), "K_px": np.linspace(10e6, 80e6, 12)}
+    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                      dashboard_address=None, silence_logs=40) as cluster, \
+            Client(cluster) as client:  # fmt: skip
+        railhunt.sweep(vehicle, {"mu": [0.3, 0.35]}, client=client)  # workers load numba
+        t0 = time.perf_counter()
+        result = railhunt.sweep(vehicle, study, client=client)
+        return time.perf_counter() - t0, len(result.rows)
+
+
 def print_table(rows: list[Row]) -> None:
     headers = ("case", "time (median)", "target", "pass/fail")
     cells = [
@@ -263,6 +282,14 @@ def main(argv: list[str] | None = None) -> int:
     t_cold = cold_start()
     rows.append(Row("import + first call (cold process, numba cache warm)", t_cold, 5.0))
 
+    # Sweep throughput (issue 5): the same study on a local Dask cluster of 1 and 2
+    # workers (cluster start-up not timed).
+    rates = {n: sweep_rate(vehicle, n) for n in (1, 2)}
+    for n, (seconds, n_points) in rates.items():
+        rows.append(Row(f"sweep of {n_points} points, {n} worker{'s' if n > 1 else ''} "
+                        f"({n_points / seconds:.2f} points/s)", seconds))  # fmt: skip
+    speedup = rates[1][0] / rates[2][0]
+
     print_table(rows)
 
     y_rh = float(res_dp.x[-1, Y_W1])
@@ -293,7 +320,15 @@ def main(argv: list[str] | None = None) -> int:
         f"(RK4: {t_base / t_rk4:.0f}x)"
     )
 
+    print(
+        f"sweep throughput: 1 worker {rates[1][1] / rates[1][0]:.2f} points/s, 2 workers "
+        f"{rates[2][1] / rates[2][0]:.2f} points/s: {speedup:.2f}x (target >= "
+        f"{SWEEP_SPEEDUP:g}x)"
+    )
+
     misses = [r.case for r in rows if r.verdict == "FAIL"]
+    if speedup < SWEEP_SPEEDUP:
+        misses.append(f"sweep speed-up with 2 workers ({speedup:.2f}x)")
     if not ok:
         misses.append("baseline agreement check")
     if misses:

@@ -22,6 +22,7 @@ Main entry points (imported lazily, so ``import railhunt`` stays fast)::
     contact_geometry                 rigid contact: r_L, r_R, contact angles, roll vs y
     equivalent_conicity              EN 15302 equivalent conicity of a Delta r table
     creep_coefficients               Hertz ellipse + Kalker's f11, f22, f23, f33
+    sweep, read_results              parameter studies on all cores or a Dask cluster
 """
 
 from __future__ import annotations
@@ -72,6 +73,9 @@ _EXPORTS = {
     "kalker_coefficients": "railhunt.contact.hertz",
     "creep_coefficients": "railhunt.contact.hertz",
     "fit_polynomials": "railhunt.contact.fit",
+    "sweep": "railhunt.studies.sweep",
+    "read_results": "railhunt.studies.store",
+    "SweepResults": "railhunt.studies.store",
 }
 
 __all__ = sorted(_EXPORTS)
