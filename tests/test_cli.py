@@ -11,6 +11,7 @@ from railhunt.cli import main
 
 COMMANDS = [
     "simulate", "eigen", "critical-speed", "parameters", "spectrogram", "bifurcation", "frequency",
+    "sweep",
 ]
 #: Commands that analyse a measured signal and take no vehicle.
 NO_VEHICLE = {"spectrogram"}
@@ -248,3 +249,50 @@ def test_bifurcation_rejects_bad_fu_family(value):
 def test_family_png_needs_family(tmp_path):
     assert_input_error(run("bifurcation", "--family-png", str(tmp_path / "f.png")),
                        "--family-png", "--fu-family")
+
+
+# --------------------------------------------------------------------------- sweep
+
+
+def test_sweep_json_and_table(tmp_path):
+    out = tmp_path / "s.csv"
+    args = ["sweep", "K_px", "--from", "2e7", "--to", "6e7", "--num", "3", "--outputs",
+            "linear_critical_speed", "--workers", "1", "--out", str(out)]  # fmt: skip
+    result = run(*args, "--json")
+    assert result.exit_code == 0, result.stderr
+    data = json.loads(result.stdout)
+    assert data["points"] == 3 and data["computed"] == 3 and data["lost"] == 0
+    assert [r["K_px"] for r in data["rows"]] == [2e7, 4e7, 6e7]
+    assert all(300 < r["linear_critical_speed_kmh"] < 700 for r in data["rows"])
+    again = run(*args, "--resume")
+    assert again.exit_code == 0, again.stderr
+    assert "0 computed" in again.stdout and "3 already there" in again.stdout
+
+
+@pytest.mark.parametrize(
+    ("args", "fragments"),
+    [
+        (["C_d1", "--from", "1e5", "--to", "2e5", "K_d", "--from", "1e6", "--num", "2"],
+         ["--to", "1 times", "2 NAMEs"]),
+        (["Cd1", "--from", "1e5", "--to", "2e5"], ["Cd1", "C_d1"]),
+        (["mu", "--from", "0.1", "--to", "2.0", "--num", "3"], ["mu", "1.5"]),
+        (["mu", "--from", "0.3", "--to", "0.1"], ["mu", "not a range"]),
+        (["mu", "--from", "0.1", "--to", "0.3", "--resume", "--overwrite"], ["--resume"]),
+        (["mu", "--from", "0.1", "--to", "0.3", "--outputs", "speed"], ["--outputs", "speed"]),
+        (["mu", "--from", "0.1", "--to", "0.3", "--tie", "f22"], ["f22", "FOLLOWER=LEADER"]),
+        (["mu", "--from", "0.1", "--to", "0.3", "--design", "lhs"], ["samples"]),
+        (["mu", "--from", "0.1", "--to", "0.3", "--workers", "0"], ["workers"]),
+    ],
+)
+def test_sweep_input_errors(tmp_path, args, fragments):
+    result = run("sweep", *args, "--out", str(tmp_path / "e.csv"))
+    assert_input_error(result, *fragments)
+    assert not (tmp_path / "e.csv").exists()
+
+
+def test_sweep_refuses_to_overwrite(tmp_path):
+    out = tmp_path / "x.csv"
+    out.write_text("keep me")
+    result = run("sweep", "mu", "--from", "0.1", "--to", "0.3", "--out", str(out))
+    assert_input_error(result, "exists", "--resume")
+    assert out.read_text() == "keep me"

@@ -422,6 +422,9 @@ Which command answers which question:
   parameters      Which vehicle parameters exist, with values and units.
   spectrogram     Which frequencies dominate a measured signal, and when?
                   (short-time Fourier transform of a CSV channel)
+  sweep           Which parameters move the critical speed and the hunting
+                  frequency?  Lines, grids and samples of vehicles, on all
+                  cores or a Dask cluster; resumable results files.
 
 \b
 Units: speeds in km/h; defect amplitudes and displacements in mm;

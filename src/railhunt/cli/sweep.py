@@ -77,16 +77,19 @@ def _parse_ties(ctx: click.Context, param: click.Parameter,
 
 
 def _pair(names: tuple[str, ...], option: str, values: tuple, default: object = None) -> list:
-    """The per-NAME values of a repeatable option (one value applies to every NAME)."""
-    if not values:
-        if default is None:
-            raise CliError(f"{option} is missing: give one per NAME ({', '.join(names)})")
+    """The per-NAME values of a repeatable option, in the order of the NAMEs.
+
+    With a ``default`` (``--num``) the option may be left out or given once for all NAMEs;
+    otherwise (``--from``, ``--to``: each parameter has its own scale) once per NAME.
+    """
+    if not values and default is not None:
         return [default] * len(names)
-    if len(values) == 1:
+    if len(values) == 1 and default is not None:
         return list(values) * len(names)
     if len(values) != len(names):
+        once = "once, or " if default is not None else ""
         raise CliError(f"{option} is given {len(values)} times for {len(names)} NAMEs "
-                       f"({', '.join(names)}): give it once, or once per NAME")  # fmt: skip
+                       f"({', '.join(names)}): give it {once}once per NAME")  # fmt: skip
     return list(values)
 
 
@@ -159,6 +162,8 @@ def sweep(names, froms, tos, nums, spacing, design, samples, seed, ties, outputs
         raise CliError("--resume and --overwrite exclude each other")
     if scheduler and workers is not None:
         raise CliError("--workers sets the local cluster; a --scheduler cluster has its own")
+    if workers is not None and not 1 <= workers <= 1024:
+        raise CliError(f"--workers {workers} is invalid: must be in [1, 1024]")
     chosen = tuple(o.strip() for o in outputs.split(",") if o.strip())
     bad = [o for o in chosen if o not in OUTPUTS]
     if bad or not chosen:
@@ -200,9 +205,9 @@ def _print_summary(result, out: Path) -> None:
 
     console = _stdout_console()
     rate = result.computed / result.elapsed_s if result.elapsed_s > 0 else math.nan
-    console.print(f"{result.meta['points']} points in {out}: {result.computed} computed "
-                  f"({_fmt(rate, '.2f', 'points/s')}), {result.resumed} already there, "
-                  f"{result.lost} lost; {result.elapsed_s:.1f} s")  # fmt: skip
+    click.echo(f"{result.meta['points']} points in {out}: {result.computed} computed "
+               f"({_fmt(rate, '.2f', 'points/s')}), {result.resumed} already there, "
+               f"{result.lost} lost; {result.elapsed_s:.1f} s")  # fmt: skip
     if len(result.rows) > 40:
         return
     cols = result.columns

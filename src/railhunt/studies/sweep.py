@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 
 from railhunt.studies.design import Point, build_design, frequency_speed, parse_ties
-from railhunt.studies.execute import progress_bar, run_tasks
+from railhunt.studies.execute import check_workers, progress_bar, run_tasks
 from railhunt.studies.store import (
     OUTPUTS,
     STATUS_FAILED,
@@ -206,6 +206,8 @@ def sweep(
                                                 and 0 < frequency_speed_kmh <= 1000):  # fmt: skip
         raise ValueError(f"frequency_speed_kmh = {frequency_speed_kmh!r} km/h is invalid: must "
                          "be in (0, 1000] km/h")  # fmt: skip
+    if client is None and scheduler is None:
+        check_workers(workers)
     if excitation is None:
         excitation = SingleDefect()
     tie_map = parse_ties(ties)
