@@ -160,15 +160,14 @@ def cold_start() -> float:
 def sweep_rate(vehicle: railhunt.Vehicle, workers: int) -> tuple[float, int]:
     """Seconds and points of a 24-point study (C_d1 and K_px lines, every output) on a
     local Dask cluster of ``workers`` processes."""
-    from distributed import Client, LocalCluster
+    from distributed import Client
 
+    from railhunt.studies.execute import local_cluster
     from railhunt.studies.sweep import warm_up
 
     warm_up()
     study = {"C_d1": np.linspace(50e3, 600e3, 12), "K_px": np.linspace(10e6, 80e6, 12)}
-    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                      dashboard_address=None, silence_logs=40) as cluster, \
-            Client(cluster) as client:  # fmt: skip
+    with local_cluster(workers) as cluster, Client(cluster) as client:
         railhunt.sweep(vehicle, {"mu": [0.3, 0.35]}, client=client)  # workers load numba
         t0 = time.perf_counter()
         result = railhunt.sweep(vehicle, study, client=client)

@@ -38,11 +38,11 @@ CD1 = [20e3, 140e3, 300e3]
 def dask_client():
     """A real local Dask cluster: two worker processes, one thread each."""
     distributed = pytest.importorskip("distributed")
+    from railhunt.studies.execute import local_cluster
     from railhunt.studies.sweep import warm_up
 
     warm_up()  # workers read numba's cache, never compile it at the same time
-    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                       dashboard_address=None, silence_logs=40)  # fmt: skip
+    cluster = local_cluster(2)
     client = distributed.Client(cluster)
     yield client
     client.close()
@@ -149,7 +149,7 @@ def test_row_equals_the_analyses_run_directly(cd1_reference):
     lin = rh.linear_critical_speed(v)
     assert row["linear_critical_speed_kmh"] == lin.speed_kmh
     assert row["linear_frequency_hz"] == lin.frequency_hz
-    hf = rh.hunting_frequency(v, 300.0)
+    hf = rh.hunting_frequency(v, 300.0, initial_amplitude=8e-3)
     assert row["hunting_frequency_hz"] == hf.frequency_hz
     assert row["frequency_source"] == hf.source
     assert row["frequency_speed_kmh"] == 300.0 and row["status"] == "ok"
@@ -157,12 +157,14 @@ def test_row_equals_the_analyses_run_directly(cd1_reference):
 
 def test_yaw_damper_line_follows_fig10a(cd1_reference):
     """Fig. 10a: V_cr rises with C_d1; the hunting frequency at 300 km/h is a limit
-    cycle's while V_cr < 300 km/h and the eigenvalue's once V_cr > 300 km/h (the jump)."""
+    cycle's while V_cr < 300 km/h and the eigenvalue's once V_cr > 300 km/h (the jump), as
+    the paper's Sec. 3.3 defines it."""
     result, _ = cd1_reference
     v_cr = result.column("critical_speed_kmh")
     assert np.all(np.diff(v_cr) > 10), v_cr
     assert v_cr[0] < 300 < v_cr[-1]
     assert result.column("frequency_source") == ["limit-cycle", "limit-cycle", "eigenvalue"]
+    assert [s == "limit-cycle" for s in result.column("frequency_source")] == list(v_cr < 300)
     # The nonlinear critical speed never exceeds the Hopf point.
     assert np.all(v_cr <= result.column("linear_critical_speed_kmh") + 1.0)
 
@@ -306,7 +308,10 @@ def test_interrupted_cli_sweep_resumes(tmp_path, sig, mu_reference):
     out = tmp_path / "k.csv"
     args = ["sweep", "mu", "--from", "0.1", "--to", "0.5", "--num", "20", "--outputs",
             "critical_speed", "--workers", "1", "--out", str(out)]  # fmt: skip
-    proc = subprocess.Popen(_cli(*args), stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    # A shell's background job starts with SIGINT ignored, and so would the child: give it
+    # the default disposition, as at a terminal, so that Python raises KeyboardInterrupt.
+    proc = subprocess.Popen(_cli(*args), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     deadline = time.monotonic() + 120
     while time.monotonic() < deadline:
         if out.exists() and len(out.read_text().splitlines()) >= 3:  # header + 2 points
@@ -316,6 +321,7 @@ def test_interrupted_cli_sweep_resumes(tmp_path, sig, mu_reference):
     _, err = proc.communicate(timeout=60)
     done = read_results(out)
     assert 2 <= len(done) < 20, "interrupted in the middle"
+    assert {r["status"] for r in done.rows} == {"ok"}, "the interrupted point is not 'failed'"
     if sig == signal.SIGINT:
         assert proc.returncode == 130
         assert b"--resume" in err

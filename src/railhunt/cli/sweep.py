@@ -15,6 +15,7 @@ from railhunt.cli import (
     _check_outputs,
     _fmt,
     _json_safe,
+    _number_range,
     _show_progress,
     _stdout_console,
     _user_input,
@@ -30,8 +31,8 @@ Each NAME is a vehicle parameter ('railhunt parameters' lists them) and
 takes its own --from/--to/--num, in the order given (one --num applies to
 all). Values are SI, as in --set (N*s/m, N/m, N, -). Every point runs the
 nonlinear critical-speed search (8 mm defect, bisection to 1 km/h), the
-linear critical speed (Hopf point) and the hunting frequency after a 3 mm
-release (at 300 km/h for the yaw-damper parameters C_d1, C_d2, K_d, F_u and
+linear critical speed (Hopf point) and the hunting frequency after an 8 mm
+release of every wheelset (at 300 km/h for the yaw-damper parameters C_d1, C_d2, K_d, F_u and
 350 km/h for the others, as in the paper; --frequency-speed overrides).
 
 \b
@@ -141,6 +142,10 @@ def _ranges(names, froms, tos, nums, spacing, design):
 @click.option("--frequency-speed", "frequency_kmh", type=float, metavar="KMH",
               help="Speed of the hunting-frequency run (km/h) [default: 300 for yaw-damper "
                    "parameters, 350 otherwise].")
+@click.option("--frequency-amplitude", "amplitude_mm", type=float, default=8.0,
+              show_default=True, metavar="MM",
+              callback=_number_range("mm", 0.0, 20.0),
+              help="Initial lateral displacement of every wheelset in the frequency run (mm).")
 @click.option("--out", "out", type=click.Path(dir_okay=False, path_type=Path), required=True,
               metavar="FILE", help="Results file (.csv, or .parquet with pyarrow).")
 @click.option("--resume", is_flag=True, help="Continue FILE: compute only its missing points.")
@@ -152,8 +157,8 @@ def _ranges(names, froms, tos, nums, spacing, design):
 @click.option("--json", "as_json", is_flag=True, help="Print a JSON summary instead of a table.")
 @_vehicle_options
 def sweep(names, froms, tos, nums, spacing, design, samples, seed, ties, outputs,
-          frequency_kmh, out, resume, overwrite, workers, scheduler, as_json, vehicle_file,
-          sets) -> None:  # fmt: skip
+          frequency_kmh, amplitude_mm, out, resume, overwrite, workers, scheduler, as_json,
+          vehicle_file, sets) -> None:  # fmt: skip
     """``railhunt sweep`` (help text: _SWEEP_HELP)."""
     from railhunt.studies.store import OUTPUTS, ResultFileError
     from railhunt.studies.sweep import sweep as run_sweep
@@ -175,7 +180,8 @@ def sweep(names, froms, tos, nums, spacing, design, samples, seed, ties, outputs
     try:
         with _user_input():
             result = run_sweep(vehicle, parameters, chosen, design=design, samples=samples,
-                               seed=seed, ties=ties, frequency_speed_kmh=frequency_kmh, out=out,
+                               seed=seed, ties=ties, frequency_speed_kmh=frequency_kmh,
+                               frequency_amplitude=amplitude_mm * 1e-3, out=out,
                                resume=resume, overwrite=overwrite, scheduler=scheduler,
                                workers=workers, progress=progress)  # fmt: skip
     except ResultFileError as exc:

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import logging
 import os
+import warnings
 from collections.abc import Callable, Sequence
 from typing import Any
 
@@ -64,6 +65,20 @@ def check_workers(workers: int | None) -> int:
     return int(workers)
 
 
+def local_cluster(workers: int) -> Any:
+    """A ``dask.distributed.LocalCluster`` of ``workers`` single-threaded processes.
+
+    Without a dashboard; its HTTP server takes any free port (no warning when 8787, the
+    default, is taken by another cluster).
+    """
+    from distributed import LocalCluster
+
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message="Port .* is already in use")
+        return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                            dashboard_address=None, silence_logs=logging.ERROR)  # fmt: skip
+
+
 def run_tasks(
     task: Callable[[Any], dict[str, Any]],
     items: Sequence[Any],
@@ -109,7 +124,7 @@ def run_tasks(
         for item in items:
             on_result(task(item))
         return []
-    from distributed import Client, LocalCluster, as_completed
+    from distributed import Client, as_completed
 
     own: list[Any] = []
     try:
@@ -117,9 +132,7 @@ def run_tasks(
             if scheduler is not None:
                 client = Client(scheduler, timeout="30s")
             else:
-                cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                                       dashboard_address=None,
-                                       silence_logs=logging.ERROR)  # fmt: skip
+                cluster = local_cluster(n)
                 own.append(cluster)
                 client = Client(cluster)
             own.insert(0, client)

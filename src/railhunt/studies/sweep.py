@@ -50,6 +50,7 @@ def evaluate_point(
     frequency_speed_kmh: float = 350.0,
     excitation: object = None,
     creep_law: str = "heuristic",
+    frequency_amplitude: float = 8e-3,
 ) -> dict[str, Any]:
     """Evaluate one point of a study: the results row of ``vehicle`` changed by the point.
 
@@ -62,13 +63,16 @@ def evaluate_point(
     outputs : sequence of str
         Any of ``"critical_speed"`` (nonlinear, by bisection with ``excitation``),
         ``"linear_critical_speed"`` (Hopf point) and ``"hunting_frequency"`` (at
-        ``frequency_speed_kmh`` from a 3 mm release of every wheelset).
+        ``frequency_speed_kmh`` after releasing every wheelset from
+        ``frequency_amplitude``).
     frequency_speed_kmh : float
         Speed of the hunting-frequency run (km/h).
     excitation : SingleDefect, optional
         Excitation of the critical-speed search (default: its 8 mm defect).
     creep_law : str
         See :class:`railhunt.model.Model`.
+    frequency_amplitude : float
+        Initial lateral displacement of every wheelset for the hunting frequency (m).
 
     Returns
     -------
@@ -102,18 +106,38 @@ def evaluate_point(
             row["linear_critical_speed_kmh"] = float(lin.speed_kmh)
             row["linear_frequency_hz"] = float(lin.frequency_hz)
         if "hunting_frequency" in outputs:
-            hf = hunting_frequency(v, frequency_speed_kmh, creep_law=creep_law)
+            hf = hunting_frequency(v, frequency_speed_kmh, initial_amplitude=frequency_amplitude,
+                                   creep_law=creep_law)  # fmt: skip
             row["hunting_frequency_hz"] = float(hf.frequency_hz)
             row["frequency_source"] = hf.source
     except Exception as exc:  # noqa: BLE001 - one bad point must not end a study
+        if _interrupted(exc):
+            raise KeyboardInterrupt from exc
         status, message = STATUS_FAILED, f"{type(exc).__name__}: {exc}"
     row["status"], row["message"] = status, message
     return row
 
 
+def _interrupted(exc: BaseException) -> bool:
+    """Whether ``exc`` stands for a Ctrl-C.
+
+    A SIGINT that arrives inside compiled (numba) code surfaces as ``SystemError: ...
+    returned a result with an exception set`` whose context is the KeyboardInterrupt; it
+    must stop the study, not be written down as a failed point.
+    """
+    seen = set()
+    while exc is not None and id(exc) not in seen:
+        if isinstance(exc, KeyboardInterrupt):
+            return True
+        seen.add(id(exc))
+        exc = exc.__cause__ or exc.__context__
+    return False
+
+
 def _task(point: Point, vehicle: Vehicle, outputs: tuple[str, ...], speeds: dict[int, float],
-          excitation: object, creep_law: str) -> dict[str, Any]:  # fmt: skip
-    return evaluate_point(point, vehicle, outputs, speeds[point.index], excitation, creep_law)
+          excitation: object, creep_law: str, amplitude: float) -> dict[str, Any]:  # fmt: skip
+    return evaluate_point(point, vehicle, outputs, speeds[point.index], excitation, creep_law,
+                          amplitude)  # fmt: skip
 
 
 def warm_up() -> None:
@@ -138,6 +162,7 @@ def sweep(
     seed: int = 0,
     ties: Mapping[str, object] | None = None,
     frequency_speed_kmh: float | None = None,
+    frequency_amplitude: float = 8e-3,
     excitation: object = None,
     creep_law: str = "heuristic",
     out: str | Path | None = None,
@@ -172,6 +197,13 @@ def sweep(
     frequency_speed_kmh : float, optional
         Speed of the hunting-frequency run (km/h); default the paper's: 300 km/h for lines
         of yaw-damper parameters (C_d1, C_d2, K_d, F_u), 350 km/h otherwise.
+    frequency_amplitude : float
+        Initial lateral displacement of every wheelset in the hunting-frequency run (m),
+        in (0, 0.02]. The default 8 mm, the amplitude of the critical-speed defect, makes
+        the frequency the large limit cycle's whenever the frequency speed is above the
+        point's nonlinear critical speed (the paper's Sec. 3.3 and its Figs. 10-11, where
+        the jump sits where V_cr crosses the frequency speed); 3 mm (the paper's Fig. 7b)
+        moves the jump to the speed of the unstable cycle of 3 mm instead.
     excitation : SingleDefect, optional
         Excitation of the critical-speed search (default 8 mm, 20 m defect).
     creep_law : str
@@ -208,6 +240,9 @@ def sweep(
                          "be in (0, 1000] km/h")  # fmt: skip
     if client is None and scheduler is None:
         check_workers(workers)
+    if not (math.isfinite(frequency_amplitude) and 0 < frequency_amplitude <= 0.02):
+        raise ValueError(f"frequency_amplitude = {frequency_amplitude!r} m is invalid: must be "
+                         "in (0, 0.02] m")  # fmt: skip
     if excitation is None:
         excitation = SingleDefect()
     tie_map = parse_ties(ties)
@@ -228,6 +263,7 @@ def sweep(
         "ties": {f: [lf[0], lf[1]] for f, lf in tie_map.items()},
         "outputs": list(outputs),
         "frequency_speed_kmh": frequency_speed_kmh,
+        "frequency_amplitude": frequency_amplitude,
         "excitation": repr(excitation),
         "creep_law": creep_law,
         "points": len(points),
@@ -240,7 +276,8 @@ def sweep(
     resumed = len(rows)
     todo = [p for p in points if p.index not in rows]
     task = functools.partial(_task, vehicle=vehicle, outputs=outputs, speeds=speeds,
-                             excitation=excitation, creep_law=creep_law)  # fmt: skip
+                             excitation=excitation, creep_law=creep_law,
+                             amplitude=frequency_amplitude)  # fmt: skip
     bar = progress_bar() if progress is True else None
     bar_task = None
     if bar is not None:
