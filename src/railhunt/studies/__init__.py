@@ -1,0 +1,1 @@
+"""Parameter studies: sweeps over vehicle parameters and their analysis (issue 5)."""
