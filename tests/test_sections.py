@@ -171,6 +171,7 @@ def test_monotone_line_gives_end_minus_start():
     for s in entry.sections:
         assert s.speed_change_kmh == pytest.approx(abs(ends[s.upper] - ends[s.lower]))
         assert s.coverage == 1.0 and s.points == 5 and s.jumps_removed == 0
+        assert s.speed_net_change_kmh == pytest.approx(s.speed_change_kmh)
     assert entry.speed_change_kmh == pytest.approx(speeds[-1] - speeds[0])
     assert sum(s.speed_share for s in entry.sections) == pytest.approx(1.0)
     assert entry.sections[0].speed_share > 0.5  # the logarithm rises fastest at first
@@ -178,11 +179,12 @@ def test_monotone_line_gives_end_minus_start():
 
 
 def test_rise_and_fall_both_count():
-    values = table1_values("K_d", 3) / 1.0
-    speeds = [250, 300, 320, 300, 290, 285, 285]  # up, then down (Fig. 10c)
+    values = table1_values("K_d", 3)
+    speeds = [250, 320, 300, 310, 290, 285, 285]  # up and down within sections
     entry = section_changes(line_rows("K_d", values, speeds))["K_d"]
-    assert [s.speed_change_kmh for s in entry.sections] == pytest.approx([70, 30, 5])
-    assert entry.speed_change_kmh == pytest.approx(105)  # not |285 - 250| = 35
+    assert [s.speed_change_kmh for s in entry.sections] == pytest.approx([90, 30, 5])
+    assert entry.speed_change_kmh == pytest.approx(125)  # not |285 - 250| = 35
+    assert [s.speed_net_change_kmh for s in entry.sections] == pytest.approx([50, 10, 5])
 
 
 def test_boundary_between_points_is_interpolated():

@@ -123,8 +123,8 @@ def sections(results: Path, png_file: Path | None, csv_file: Path | None,
 
 def _write_sections_csv(table: Any, path: Path) -> None:
     header = ["parameter", "section", "lower_si", "upper_si", "lower", "upper", "unit",
-              "speed_change_kmh", "speed_share", "frequency_change_hz", "frequency_share",
-              "points", "coverage", "jumps_removed"]  # fmt: skip
+              "speed_change_kmh", "speed_share", "speed_net_change_kmh", "frequency_change_hz",
+              "frequency_share", "points", "coverage", "jumps_removed"]  # fmt: skip
     try:
         with open(path, "w", newline="", encoding="utf-8") as handle:
             writer = csv.writer(handle)
@@ -135,7 +135,8 @@ def _write_sections_csv(table: Any, path: Path) -> None:
                     writer.writerow([entry.parameter, s.section, repr(s.lower), repr(s.upper),
                                      d["lower"], d["upper"], entry.unit,
                                      *(repr(float(getattr(s, k))) for k in
-                                       ("speed_change_kmh", "speed_share", "frequency_change_hz",
+                                       ("speed_change_kmh", "speed_share",
+                                        "speed_net_change_kmh", "frequency_change_hz",
                                         "frequency_share")),
                                      s.points, repr(s.coverage), s.jumps_removed])  # fmt: skip
     except OSError as exc:

@@ -453,6 +453,11 @@ class SectionChange:
         below 1 the line starts or ends inside it.
     jumps_removed : int
         Frequency jumps (source changes between neighbours) left out of Δf here.
+    speed_net_change_kmh : float
+        ``|V_cr(upper) - V_cr(lower)|`` (km/h, ends interpolated, over the covered part):
+        equal to ΔV_cr where V_cr is monotone over the section. Where it is much smaller,
+        V_cr rises and falls there, or the search's resolution (1 km/h by default) adds
+        wiggles to a flat stretch.
     """
 
     section: int
@@ -465,6 +470,7 @@ class SectionChange:
     points: int
     coverage: float
     jumps_removed: int
+    speed_net_change_kmh: float = math.nan
 
     def to_dict(self, scale: float = 1.0) -> dict[str, Any]:
         """JSON-ready numbers (NaN as None); ``scale`` gives the ends in display units too."""
@@ -476,6 +482,7 @@ class SectionChange:
             "upper": float(f"{self.upper / scale:.12g}"),
             "speed_change_kmh": self.speed_change_kmh,
             "speed_share": self.speed_share,
+            "speed_net_change_kmh": self.speed_net_change_kmh,
             "frequency_change_hz": self.frequency_change_hz,
             "frequency_share": self.frequency_share,
             "points": self.points,
@@ -620,6 +627,16 @@ def _variation(
     return total, jumps, span
 
 
+def _net_change(x: np.ndarray, y: np.ndarray, lower: float, upper: float) -> float:
+    """``|y(b) - y(a)|`` over the part ``[a, b]`` of ``[lower, upper]`` the points span."""
+    if x.size < 2:
+        return math.nan
+    a, b = max(lower, float(x[0])), min(upper, float(x[-1]))
+    if b <= a:
+        return math.nan
+    return abs(float(np.interp(b, x, y)) - float(np.interp(a, x, y)))
+
+
 def _sum_known(parts: Iterator[float]) -> float:
     """Sum of the numbers that are not NaN (NaN when none is)."""
     known = [p for p in parts if not math.isnan(p)]
@@ -691,13 +708,14 @@ def _parameter_sections(line: SweepLine, entry: Table1Parameter) -> ParameterSec
             what = "not covered" if coverage <= 0 else f"{100 * coverage:.0f} % covered"
             notes.append(f"section {k} ({shown((lower, upper))}): {what} by the line")
         inside = int(np.count_nonzero((x >= lower - tol) & (x <= upper + tol)))
-        raw.append((k, lower, upper, dv, df, inside, min(coverage, 1.0), jumps))
+        net = _net_change(xv, yv, lower, upper) if has_speed else math.nan
+        raw.append((k, lower, upper, dv, df, inside, min(coverage, 1.0), jumps, net))
     total_v = _sum_known(r[3] for r in raw)
     total_f = _sum_known(r[4] for r in raw)
     sections = tuple(
         SectionChange(k, lower, upper, dv, df, _share(dv, total_v), _share(df, total_f),
-                      inside, coverage, jumps)  # fmt: skip
-        for k, lower, upper, dv, df, inside, coverage, jumps in raw
+                      inside, coverage, jumps, net)  # fmt: skip
+        for k, lower, upper, dv, df, inside, coverage, jumps, net in raw
     )
     speed = line.frequency_speed_kmh
     if math.isfinite(speed) and not math.isclose(speed, entry.frequency_speed_kmh):
