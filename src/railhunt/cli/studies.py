@@ -25,7 +25,7 @@ def _load(results: Path, what: str) -> Any:
         return what(results)
     except OSError as exc:
         raise CliError(f"{results}: {exc.strerror or exc}") from None
-    except (ValueError, KeyError) as exc:
+    except (ValueError, KeyError, ImportError) as exc:  # ImportError: Parquet without pyarrow
         text = str(exc.args[0]) if isinstance(exc, KeyError) and exc.args else str(exc)
         if str(results) not in text:
             text = f"{results}: {text}"
