@@ -11,10 +11,10 @@ from railhunt.cli import main
 
 COMMANDS = [
     "simulate", "eigen", "critical-speed", "parameters", "spectrogram", "bifurcation", "frequency",
-    "sweep",
+    "sweep", "sections", "plot",
 ]
-#: Commands that analyse a measured signal and take no vehicle.
-NO_VEHICLE = {"spectrogram"}
+#: Commands that analyse a measured signal or a results file and take no vehicle.
+NO_VEHICLE = {"spectrogram", "sections", "plot"}
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 
 

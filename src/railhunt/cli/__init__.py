@@ -425,6 +425,10 @@ Which command answers which question:
   sweep           Which parameters move the critical speed and the hunting
                   frequency?  Lines, grids and samples of vehicles, on all
                   cores or a Dask cluster; resumable results files.
+  sections        How much of that change happens in each section of the
+                  paper's Table 1 ranges?  (Fig. 12, frequency jump removed)
+  plot            V_cr and hunting frequency against each swept parameter
+                  from a results file (Figs. 10 and 11).
 
 \b
 Units: speeds in km/h; defect amplitudes and displacements in mm;

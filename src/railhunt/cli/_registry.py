@@ -9,5 +9,6 @@ from railhunt.cli import (
     bifurcation,  # noqa: F401
     contact,  # noqa: F401
     spectrogram,  # noqa: F401
+    studies,  # noqa: F401
     sweep,  # noqa: F401
 )
