@@ -282,12 +282,32 @@ def test_sweep_json_and_table(tmp_path):
         (["mu", "--from", "0.1", "--to", "0.3", "--tie", "f22"], ["f22", "FOLLOWER=LEADER"]),
         (["mu", "--from", "0.1", "--to", "0.3", "--design", "lhs"], ["samples"]),
         (["mu", "--from", "0.1", "--to", "0.3", "--workers", "0"], ["workers"]),
+        ([], ["NAME", "--table1"]),
+        (["--table1", "--from", "1"], ["--table1", "--from"]),
+        (["--table1", "K_py"], ["K_py", "Table 1"]),
+        (["--table1", "--points-per-section", "1"], ["points_per_section"]),
     ],
 )
 def test_sweep_input_errors(tmp_path, args, fragments):
     result = run("sweep", *args, "--out", str(tmp_path / "e.csv"))
     assert_input_error(result, *fragments)
     assert not (tmp_path / "e.csv").exists()
+
+
+def test_sweep_table1_is_the_papers_study(tmp_path):
+    """--table1 runs each chosen Table 1 parameter over its sections, f22 tied to f11."""
+    out = tmp_path / "t1.csv"
+    result = run("sweep", "--table1", "f11", "C_d2", "--points-per-section", "2", "--outputs",
+                 "linear_critical_speed", "--workers", "1", "--out", str(out))  # fmt: skip
+    assert result.exit_code == 0, result.stderr
+    from railhunt.studies.store import read_results
+
+    res = read_results(out)
+    assert res.lines == ["f11", "C_d2"]
+    f11 = res.line("f11")
+    assert list(f11.column("f11")) == [2e6, 5e6, 8e6, 11e6]
+    assert list(f11.column("f22")) == list(f11.column("f11"))
+    assert list(res.line("C_d2").column("C_d2")) == [1e3, 40e3, 80e3, 120e3]
 
 
 def test_sweep_refuses_to_overwrite(tmp_path):

@@ -55,6 +55,7 @@ Examples:
   railhunt sweep C_d1 --from 100e3 --to 600e3 K_d --from 1e6 --to 20e6 \\
       --num 5 --design grid --out grid.csv
   railhunt sweep mu --from 0.05 --to 0.5 --num 10 --out mu.csv --resume
+  railhunt sweep --table1 --out table1.csv      # the paper's Figs. 10-12
 """
 
 
@@ -120,7 +121,12 @@ def _ranges(names, froms, tos, nums, spacing, design):
 
 
 @main.command(help=_SWEEP_HELP, short_help="Parameter study: critical speeds and frequency.")
-@click.argument("names", nargs=-1, required=True, metavar="NAME [NAME2 ...]")
+@click.argument("names", nargs=-1, metavar="NAME [NAME2 ...]")
+@click.option("--table1", is_flag=True,
+              help="The paper's study: each Table 1 parameter (or each NAME of Table 1) over "
+                   "its three sections, f22 tied to f11; no --from/--to.")
+@click.option("--points-per-section", "per_section", type=int, default=5, show_default=True,
+              metavar="N", help="With --table1: points per section, both ends included.")
 @click.option("--from", "froms", type=float, multiple=True, metavar="VALUE",
               help="Start of NAME's range (SI), once per NAME.")
 @click.option("--to", "tos", type=float, multiple=True, metavar="VALUE",
@@ -156,9 +162,9 @@ def _ranges(names, froms, tos, nums, spacing, design):
               help="Run on the Dask cluster of this scheduler (e.g. tcp://10.0.0.5:8786).")
 @click.option("--json", "as_json", is_flag=True, help="Print a JSON summary instead of a table.")
 @_vehicle_options
-def sweep(names, froms, tos, nums, spacing, design, samples, seed, ties, outputs,
-          frequency_kmh, amplitude_mm, out, resume, overwrite, workers, scheduler, as_json,
-          vehicle_file, sets) -> None:  # fmt: skip
+def sweep(names, table1, per_section, froms, tos, nums, spacing, design, samples, seed, ties,
+          outputs, frequency_kmh, amplitude_mm, out, resume, overwrite, workers, scheduler,
+          as_json, vehicle_file, sets) -> None:  # fmt: skip
     """``railhunt sweep`` (help text: _SWEEP_HELP)."""
     from railhunt.studies.store import OUTPUTS, ResultFileError
     from railhunt.studies.sweep import sweep as run_sweep
@@ -175,7 +181,18 @@ def sweep(names, froms, tos, nums, spacing, design, samples, seed, ties, outputs
         raise CliError(f"--outputs {outputs}: choose from {', '.join(OUTPUTS)}")
     _check_outputs(out=out)
     vehicle = _build_vehicle(vehicle_file, sets)
-    parameters = _ranges(names, froms, tos, nums, spacing, design)
+    if table1:
+        if froms or tos or nums or design != "lines":
+            raise CliError("--table1 sets the values itself: drop --from/--to/--num/--design")
+        from railhunt.studies.sections import table1_study
+
+        with _user_input("--table1: "):
+            parameters, table_ties = table1_study(per_section, names or None)
+        ties = {**{f: (lead, 1.0) for f, lead in table_ties.items()}, **ties}
+    elif not names:
+        raise CliError("give at least one parameter NAME with --from/--to, or --table1")
+    else:
+        parameters = _ranges(names, froms, tos, nums, spacing, design)
     progress = _show_progress()
     try:
         with _user_input():

@@ -235,6 +235,34 @@ def table1_values(
     return np.concatenate([parts[0], *(part[1:] for part in parts[1:])])
 
 
+def table1_study(
+    points_per_section: int = 5,
+    names: Sequence[str] | None = None,
+) -> tuple[dict[str, np.ndarray], dict[str, str]]:
+    """The paper's parameter study: every Table 1 parameter over its three sections.
+
+    Parameters
+    ----------
+    points_per_section : int
+        Points per section, both ends included (see :func:`table1_values`).
+    names : sequence of str, optional
+        A subset of the Table 1 parameters (default: all seven, in the paper's order).
+
+    Returns
+    -------
+    parameters : dict
+        Name -> SI values, for ``railhunt.sweep(vehicle, parameters, ties=ties)`` with the
+        default ``design="lines"``.
+    ties : dict
+        Follower -> leader (``{"f22": "f11"}``: the paper sets f22 = f11).
+    """
+    table = load_table1()
+    chosen = list(table) if names is None else [_table_entry(n, table).name for n in names]
+    parameters = {n: table1_values(n, points_per_section, table) for n in chosen}
+    ties = {follower: n for n in chosen for follower in table[n].ties}
+    return parameters, ties
+
+
 # --------------------------------------------------------------------------- results
 
 
