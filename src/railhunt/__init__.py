@@ -23,6 +23,7 @@ Main entry points (imported lazily, so ``import railhunt`` stays fast)::
     equivalent_conicity              EN 15302 equivalent conicity of a Delta r table
     creep_coefficients               Hertz ellipse + Kalker's f11, f22, f23, f33
     sweep, read_results              parameter studies on all cores or a Dask cluster
+    table1_study, section_changes    the paper's Table 1 study and its Fig. 12 sections
 """
 
 from __future__ import annotations
@@ -76,6 +77,9 @@ _EXPORTS = {
     "sweep": "railhunt.studies.sweep",
     "read_results": "railhunt.studies.store",
     "SweepResults": "railhunt.studies.store",
+    "load_table1": "railhunt.studies.sections",
+    "table1_study": "railhunt.studies.sections",
+    "section_changes": "railhunt.studies.sections",
 }
 
 __all__ = sorted(_EXPORTS)
