@@ -520,7 +520,8 @@ def _fig8(ctx: _Context) -> Step:
     step.figures.append(plot_damper_histories(cases, ctx.out_dir / "fig8.png"))
     step.shows = (f"At {below.speed_kmh:.1f} km/h the 3 mm release blows the dampers off only "
                   "in the first oscillations, then decays with the front dampers below v_u "
-                  f"(at most {ratios[0]:.2f} v_u) and a period of {periods[0]:.3f} s; at {above.speed_kmh:.1f} km/h it settles on a limit cycle of "
+                  f"(at most {ratios[0]:.2f} v_u) and a period of {periods[0]:.3f} s; at "
+                  f"{above.speed_kmh:.1f} km/h it settles on a limit cycle of "
                   f"period {periods[1]:.3f} s with the front dampers at {ratios[1]:.2f} v_u "
                   "(blown off).")  # fmt: skip
     step.how = (f"The two releases that bracket the jump of Fig. 7b; period = mean spacing of "
