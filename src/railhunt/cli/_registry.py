@@ -8,5 +8,6 @@ from __future__ import annotations
 from railhunt.cli import (
     bifurcation,  # noqa: F401
     contact,  # noqa: F401
+    reproduce,  # noqa: F401
     spectrogram,  # noqa: F401
 )
