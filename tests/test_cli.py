@@ -11,9 +11,10 @@ from railhunt.cli import main
 
 COMMANDS = [
     "simulate", "eigen", "critical-speed", "parameters", "spectrogram", "bifurcation", "frequency",
+    "reproduce",
 ]
-#: Commands that analyse a measured signal and take no vehicle.
-NO_VEHICLE = {"spectrogram"}
+#: Commands that take no vehicle: a measured signal's analysis, the paper's reproduction.
+NO_VEHICLE = {"spectrogram", "reproduce"}
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 
 
