@@ -22,6 +22,7 @@ Main entry points (imported lazily, so ``import railhunt`` stays fast)::
     contact_geometry                 rigid contact: r_L, r_R, contact angles, roll vs y
     equivalent_conicity              EN 15302 equivalent conicity of a Delta r table
     creep_coefficients               Hertz ellipse + Kalker's f11, f22, f23, f33
+    reproduce                        the paper's Figs. 6-13 and an HTML report
 """
 
 from __future__ import annotations
@@ -72,6 +73,7 @@ _EXPORTS = {
     "kalker_coefficients": "railhunt.contact.hertz",
     "creep_coefficients": "railhunt.contact.hertz",
     "fit_polynomials": "railhunt.contact.fit",
+    "reproduce": "railhunt.studies.reproduce",
 }
 
 __all__ = sorted(_EXPORTS)
