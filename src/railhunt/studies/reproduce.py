@@ -758,8 +758,10 @@ def _fig10_12(ctx: _Context) -> Step:
     n = ctx.settings.sweep_points
     values = table1_values(n)  # assumed: {name: SI values over Table 1's whole range}
     params = {name: values[name] for name in FIG10_LINES + FIG11_LINES}
+    # Without a client reproduce runs in this one process, and so does the sweep.
     results = sweep(ctx.vehicle, params, design="lines", ties={"f22": "f11"},
-                    out=ctx.out_dir / "sweep.csv", client=ctx.client)  # fmt: skip
+                    out=ctx.out_dir / "sweep.csv", client=ctx.client,
+                    workers=1 if ctx.client is None else None)  # fmt: skip
     step.figures += [plot_sweep(results, ctx.out_dir / "fig10.png", lines=FIG10_LINES),
                      plot_sweep(results, ctx.out_dir / "fig11.png", lines=FIG11_LINES),
                      plot_sections(section_changes(results), ctx.out_dir / "fig12.png")]
