@@ -21,6 +21,7 @@ import sys
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -277,6 +278,26 @@ def main(argv: list[str] | None = None) -> int:
     rhs_err = check_baseline_rhs(vehicle, exc)
     t_base, sol = median_time(lambda: baseline_run(vehicle, exc), repeat_baseline)
     rows.append(Row("baseline: solve_ivp + NumPy RHS, 10 s", t_base))
+
+    # One-command reproduction of the paper's figures (issue 5): quick in this process; the
+    # full run on a local Dask cluster of 2 workers when Dask is installed (timed once each).
+    import tempfile
+
+    from railhunt.studies.reproduce import reproduce
+
+    with tempfile.TemporaryDirectory() as tmp:
+        t_rq = reproduce(Path(tmp) / "quick", quick=True).seconds
+        rows.append(Row("railhunt reproduce --quick (1 process)", t_rq, 60.0))
+        if not args.quick:
+            try:
+                from dask.distributed import Client, LocalCluster
+            except ImportError:
+                pass
+            else:
+                with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster, Client(cluster) as client:
+                    t_rf = reproduce(Path(tmp) / "full", client=client).seconds
+                rows.append(Row("railhunt reproduce, full (2 Dask workers)", t_rf, 300.0))
 
     t_cold = cold_start()
     rows.append(Row("import + first call (cold process, numba cache warm)", t_cold, 5.0))

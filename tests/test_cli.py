@@ -11,10 +11,11 @@ from railhunt.cli import main
 
 COMMANDS = [
     "simulate", "eigen", "critical-speed", "parameters", "spectrogram", "bifurcation", "frequency",
-    "sweep", "sections", "plot",
+    "sweep", "sections", "plot", "reproduce",
 ]
-#: Commands that analyse a measured signal or a results file and take no vehicle.
-NO_VEHICLE = {"spectrogram", "sections", "plot"}
+#: Commands that take no vehicle: a measured signal's or a results file's analysis, the
+#: paper's reproduction.
+NO_VEHICLE = {"spectrogram", "sections", "plot", "reproduce"}
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 
 

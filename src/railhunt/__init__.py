@@ -24,6 +24,7 @@ Main entry points (imported lazily, so ``import railhunt`` stays fast)::
     creep_coefficients               Hertz ellipse + Kalker's f11, f22, f23, f33
     sweep, read_results              parameter studies on all cores or a Dask cluster
     table1_study, section_changes    the paper's Table 1 study and its Fig. 12 sections
+    reproduce                        the paper's Figs. 6-13 and an HTML report
 """
 
 from __future__ import annotations
@@ -80,6 +81,7 @@ _EXPORTS = {
     "load_table1": "railhunt.studies.sections",
     "table1_study": "railhunt.studies.sections",
     "section_changes": "railhunt.studies.sections",
+    "reproduce": "railhunt.studies.reproduce",
 }
 
 __all__ = sorted(_EXPORTS)

@@ -33,11 +33,13 @@ __all__ = [
     "plot_bifurcation",
     "plot_bifurcation_family",
     "plot_contact_geometry",
+    "plot_damper_histories",
     "plot_damper_velocity",
     "plot_hunting_frequency",
     "plot_root_locus",
     "plot_sections",
     "plot_sweep",
+    "plot_time_histories",
     "plot_time_history",
 ]
 
@@ -89,14 +91,20 @@ def plot_time_history(
     pathlib.Path
         The file written.
     """
+    fig = _new_figure(11.0, 4.2)
+    ax_t, ax_p = fig.subplots(1, 2, width_ratios=(1.6, 1.0))
+    _draw_time_history(ax_t, ax_p, result, channel, phase_from)
+    return _save(fig, path)
+
+
+def _draw_time_history(ax_t: Axes, ax_p: Axes, result: SimulationResult, channel: str,
+                       phase_from: float) -> None:  # fmt: skip
+    """Draw one run's displacement history on ``ax_t`` and its phase plane on ``ax_p``."""
     t = np.asarray(result.t)
     y = np.asarray(result[channel]) * 1e3
     dy = np.asarray(result["d" + channel]) * 1e3
     speed = result.speed_kmh
     wheelset = channel.rsplit("_", 1)[-1]
-
-    fig = _new_figure(11.0, 4.2)
-    ax_t, ax_p = fig.subplots(1, 2, width_ratios=(1.6, 1.0))
 
     ax_t.plot(t, y, color="tab:blue", lw=0.9)
     t_exc = float(getattr(result, "excitation_end", 0.0) or 0.0)
@@ -125,7 +133,6 @@ def plot_time_history(
     ax_p.set_ylabel(f"lateral velocity d{channel} (mm/s)")
     ax_p.set_title(f"phase plane at {speed:.0f} km/h, {note}")
     ax_p.grid(True, alpha=0.3)
-    return _save(fig, path)
 
 
 def _wheelset_label(index: str) -> str:
@@ -399,6 +406,90 @@ def plot_bifurcation_family(
         ax.grid(True, alpha=0.3)
         ax.set_xlabel("speed (km/h)", fontsize=8)
         ax.set_ylabel("y_w1 amplitude (mm)", fontsize=8)
+    return _save(fig, path)
+
+
+def plot_time_histories(
+    results: list[SimulationResult],
+    path: str | os.PathLike[str],
+    channel: str = "y_w1",
+    phase_from: float = PHASE_FROM,
+) -> Path:
+    """Several runs stacked, each as time history and phase plane (the paper's Fig. 6).
+
+    One row per run: lateral displacement (mm) against time (s) on the left, lateral
+    velocity (mm/s) against displacement (mm) after ``phase_from`` seconds on the right, as
+    drawn by :func:`plot_time_history`. The paper's Fig. 6 is two rows: the highest stable
+    speed and 1 km/h above it.
+
+    Parameters
+    ----------
+    results : list of SimulationResult
+        Runs of :func:`railhunt.simulate`, drawn top to bottom.
+    path : str or os.PathLike
+        Output file; the format follows the suffix.
+    channel : str
+        Lateral displacement channel, ``"y_w1"`` (leading wheelset) by default.
+    phase_from : float
+        Start of the phase-plane window (s).
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+    """
+    if not results:
+        raise ValueError("results is empty: give at least one simulation result")
+    fig = _new_figure(11.0, 3.6 * len(results))
+    axes = fig.subplots(len(results), 2, width_ratios=(1.6, 1.0), squeeze=False)
+    for (ax_t, ax_p), result in zip(axes, results, strict=True):
+        _draw_time_history(ax_t, ax_p, result, channel, phase_from)
+    return _save(fig, path)
+
+
+def plot_damper_histories(
+    cases: list[tuple[str, np.ndarray, np.ndarray, np.ndarray, float]],
+    path: str | os.PathLike[str],
+) -> Path:
+    """Side-by-side time histories like the paper's Fig. 8, one column per case.
+
+    Top row: the leading wheelset's lateral displacement (mm); bottom row: the front left
+    yaw damper's velocity (m/s) with the blow-off velocity ``±v_u`` as red lines. The
+    paper's Fig. 8 contrasts a run whose damper stays below ``v_u`` (period 0.25 s) with
+    one whose damper blows off (0.19 s).
+
+    Parameters
+    ----------
+    cases : list of (title, t, y, damper_velocity, blowoff_velocity)
+        Per column: a title, times (s), displacements (m), the damper velocities (m/s, one
+        column per damper, as :class:`railhunt.analysis.frequency.HuntingFrequency` holds
+        them) and the blow-off velocity (m/s).
+    path : str or os.PathLike
+        Output file; the format follows the suffix.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+    """
+    if not cases:
+        raise ValueError("cases is empty: give at least one time history")
+    fig = _new_figure(5.2 * len(cases), 5.2)
+    axes = fig.subplots(2, len(cases), squeeze=False, sharex="col")
+    for k, (title, t, y, vd, v_u) in enumerate(cases):
+        ax_y, ax_v = axes[0, k], axes[1, k]
+        ax_y.plot(t, np.asarray(y) * 1e3, lw=0.8)
+        ax_y.set_ylabel("y_w1 (mm)")
+        ax_y.set_title(title, fontsize=9)
+        ax_y.grid(True, alpha=0.3)
+        ax_v.plot(t, np.asarray(vd)[:, 0], lw=0.8, label="front left yaw damper v_d")
+        for sign in (1, -1):
+            ax_v.axhline(sign * v_u, color="r", lw=1,
+                         label="blow-off velocity v_u" if sign > 0 else None)  # fmt: skip
+        ax_v.set_xlabel("time (s)")
+        ax_v.set_ylabel("damper velocity (m/s)")
+        ax_v.grid(True, alpha=0.3)
+        ax_v.legend(fontsize=7, loc="upper right")
     return _save(fig, path)
 
 

@@ -1,1 +1,1 @@
-"""Parameter studies: sweep designs, parallel execution, result files, Table 1 sections."""
+"""Parameter studies: sweeps, result files, Table 1 sections, the paper's reproduction."""

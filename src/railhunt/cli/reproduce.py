@@ -1,0 +1,153 @@
+"""``railhunt reproduce``: recompute the paper's figures and write a self-contained report."""
+
+from __future__ import annotations
+
+import contextlib
+import os
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import Any
+
+import click
+
+from railhunt.cli import CliError, _show_progress, _stdout_console, main
+
+
+@contextlib.contextmanager
+def _dask_client(scheduler: str | None, workers: int | None) -> Iterator[Any]:
+    """A Dask client: joined to ``scheduler``, or a new local cluster of ``workers`` processes.
+
+    Yields None (everything runs in this process) for ``--workers 1`` or when Dask is not
+    installed and no scheduler was asked for.
+    """
+    if scheduler is None and workers == 1:
+        yield None
+        return
+    try:
+        from dask.distributed import Client, LocalCluster
+    except ImportError:
+        if scheduler is not None:
+            raise CliError("--scheduler needs Dask: pip install 'railhunt[dask]'") from None
+        yield None
+        return
+    if scheduler is not None:
+        try:
+            client = Client(scheduler, timeout="10s")
+        except OSError as exc:
+            raise CliError(f"--scheduler {scheduler}: cannot connect ({exc})") from None
+        with client:
+            yield client
+        return
+    n = workers or os.cpu_count() or 1
+    with LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                      dashboard_address=None) as cluster, Client(cluster) as client:  # fmt: skip
+        yield client
+
+
+@contextlib.contextmanager
+def _step_progress() -> Iterator[Callable[[str, str], None] | None]:
+    """A rich display with one line per step on stderr (only on a terminal)."""
+    if not _show_progress():
+        yield None
+        return
+    from rich.console import Console
+    from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
+
+    columns = (SpinnerColumn(), TextColumn("{task.description}"), TimeElapsedColumn())
+    with Progress(*columns, console=Console(stderr=True)) as progress:
+        tasks: dict[str, Any] = {}
+
+        def update(title: str, state: str) -> None:
+            if state == "start":
+                tasks[title] = progress.add_task(f"{title}: computing", total=1)
+                return
+            style = {"ok": "green", "failed": "red"}.get(state, "yellow")
+            progress.update(tasks[title], completed=1,
+                            description=f"{title}: [{style}]{state}[/{style}]")  # fmt: skip
+
+        yield update
+
+
+def _difference_style(agrees: bool | None) -> str:
+    return "dim" if agrees is None else ("green" if agrees else "red")
+
+
+@main.command(short_help="Recompute the paper's Figs. 6-8, 10-13 into an HTML report.")
+@click.option("--out", "out_dir", required=True, metavar="DIR",
+              type=click.Path(file_okay=False, path_type=Path),
+              help="Folder for report.html, headline.json and the figures (created if "
+              "missing; files of an earlier run are overwritten).")  # fmt: skip
+@click.option("--quick", is_flag=True,
+              help="Coarser and faster (under a minute): fewer speeds, a smaller F_u family, "
+              "fewer sweep points.")  # fmt: skip
+@click.option("--scheduler", metavar="ADDRESS",
+              help="Run the parallel parts on this Dask scheduler (e.g. tcp://host:8786) "
+              "instead of a local cluster.")  # fmt: skip
+@click.option("--workers", type=click.IntRange(min=1, max=256), metavar="N",
+              help="Worker processes of the local Dask cluster (default: one per core; 1: "
+              "no cluster, everything in this process).")  # fmt: skip
+def reproduce(out_dir: Path, quick: bool, scheduler: str | None, workers: int | None) -> None:
+    """Recompute the paper's Figs. 6, 7, 8, 10-13 for its vehicle and compare its numbers.
+
+    \b
+    Writes DIR/report.html: one self-contained file (figures embedded, no
+    network needed) with a table of the paper's headline numbers beside
+    railhunt's and the difference, each figure with the paper's caption, what
+    railhunt shows and how it was computed, and the run times. Also writes
+    DIR/headline.json (machine readable) and DIR/fig6.png ... fig13.png.
+    The full run takes a few minutes on two cores, --quick under one.
+    """
+    if scheduler is not None and workers is not None:
+        raise CliError("give either --scheduler or --workers, not both")
+    if out_dir.exists() and not out_dir.is_dir():
+        raise CliError(f"--out {out_dir}: exists and is not a folder")
+    try:
+        out_dir.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise CliError(f"--out {out_dir}: {exc.strerror or exc}") from None
+
+    from railhunt.cli import _spinner
+    from railhunt.studies.reproduce import reproduce as run_reproduce
+    from railhunt.vehicle import Vehicle
+
+    vehicle = Vehicle.paper2019()
+    with _spinner("loading the compiled model"):
+        # Compile (or load) numba's cache here, before any worker starts: workers that
+        # compile the same cache at once can crash (numba issue #4807).
+        from railhunt.analysis.frequency import hunting_frequency
+
+        hunting_frequency(vehicle, 400.0)
+    stack = contextlib.ExitStack()
+    with _spinner("starting Dask workers"):
+        client = stack.enter_context(_dask_client(scheduler, workers))
+    with stack, _step_progress() as progress:
+        report = run_reproduce(out_dir, quick=quick, client=client, progress=progress,
+                               vehicle=vehicle)  # fmt: skip
+
+    from rich.table import Table
+
+    table = Table(title=f"the paper's headline numbers and railhunt's ({report.vehicle})")
+    for head in ("quantity (where)", "paper", "railhunt", "difference"):
+        table.add_column(head, justify="left" if head == "quantity (where)" else "right")
+    for row in report.headline:
+        style = _difference_style(row.agrees)
+        unit = f" {row.unit}" if row.unit and row.railhunt is not None else ""
+        table.add_row(f"{row.quantity} ({row.where})", f"{row.paper_text}{unit}",
+                      f"{row.railhunt_text}{unit}",
+                      f"[{style}]{row.difference}[/{style}]")  # fmt: skip
+    out = _stdout_console()
+    out.print(table)
+    for step in report.steps:
+        line = f"{step.title}: {step.status} ({step.seconds:.1f} s)"
+        if step.status != "ok":
+            line += f": {step.message.splitlines()[0] if step.message else ''}"
+        out.print(line)
+    minutes, seconds = divmod(report.seconds, 60.0)
+    out.print(f"total {int(minutes)} min {seconds:.0f} s"
+              + (f" on {report.workers} Dask workers" if report.workers else ""))
+    out.print(f"wrote {report.html}")
+    if report.failed:
+        names = ", ".join(s.title for s in report.failed)
+        click.echo(f"railhunt: error: {names} failed (see the report)", err=True)
+        raise SystemExit(1)
+
