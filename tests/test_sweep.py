@@ -332,14 +332,3 @@ def test_interrupted_cli_sweep_resumes(tmp_path, sig, mu_reference):
     assert [r["point"] for r in final.rows] == list(range(20))
     assert len(out.read_text().splitlines()) == 21  # header + each point once
     assert final.rows == mu_reference.rows
-
-
-def test_soft_primary_longitudinal_stiffness_keeps_the_hunting_mode():
-    """With K_px = 10 MN/m a heavily damped wheelset creep mode near 0.9 Hz (damping ratio
-    0.7) decays more slowly than the 5 Hz hunting mode (ratio 0.2). The hunting mode is the
-    least damped by ratio, so the frequency of the K_px line (Fig. 11c) does not drop to
-    0.9 Hz at the soft end."""
-    soft = VEHICLE.replace(K_px=10e6)
-    eig = rh.eigen_analysis(soft, [350.0])
-    assert 4.0 < eig.hunting_frequency_hz[0] < 6.0
-    assert eig.hunting_damping_ratio[0] < 0.3

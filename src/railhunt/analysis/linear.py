@@ -85,21 +85,16 @@ def hunting_mode_index(w: np.ndarray, vecs: np.ndarray, a: float) -> int:
     """Index of the hunting mode among eigenpairs ``(w, vecs)``.
 
     Among the oscillatory modes (Im > 0) whose largest lateral displacement amplitude
-    (yaw angles scaled by the half gauge ``a``) belongs to a wheelset, the least damped by
-    damping ratio (largest ``Re/|w|``). Falls back to the least-damped oscillatory mode.
-
-    The ratio, not the real part: with a soft primary longitudinal stiffness (K_px of
-    10-15 MN/m) a heavily damped wheelset creep mode near 0.9 Hz (damping ratio 0.7) has a
-    smaller decay rate than the 5 Hz hunting mode (ratio 0.2) and was picked instead.
+    (yaw angles scaled by the half gauge ``a``) belongs to a wheelset, the least damped
+    (largest real part). Falls back to the least-damped oscillatory mode.
     """
     best, best_any = -1, -1
-    ratio = w.real / np.maximum(np.abs(w), 1e-300)
     for k in range(w.size):
         if w[k].imag <= 1e-6:
             continue
-        if best_any < 0 or ratio[k] > ratio[best_any]:
+        if best_any < 0 or w[k].real > w[best_any].real:
             best_any = k
-        if _is_wheelset_mode(vecs[:17, k], a) and (best < 0 or ratio[k] > ratio[best]):
+        if _is_wheelset_mode(vecs[:17, k], a) and (best < 0 or w[k].real > w[best].real):
             best = k
     return best if best >= 0 else best_any
 
