@@ -158,9 +158,9 @@ def cold_start() -> float:
 # --------------------------------------------------------------------------------------
 
 
-def sweep_rate(vehicle: railhunt.Vehicle, workers: int) -> tuple[float, int]:
-    """Seconds and points of a 24-point study (C_d1 and K_px lines, every output) on a
-    local Dask cluster of ``workers`` processes."""
+def sweep_rate(vehicle: railhunt.Vehicle, workers: int, repeat: int) -> tuple[float, int]:
+    """Median seconds and points of a 24-point study (C_d1 and K_px lines, every output) on
+    a local Dask cluster of ``workers`` processes, every worker's numba code loaded first."""
     from distributed import Client
 
     from railhunt.studies.execute import local_cluster
@@ -169,10 +169,10 @@ def sweep_rate(vehicle: railhunt.Vehicle, workers: int) -> tuple[float, int]:
     warm_up()
     study = {"C_d1": np.linspace(50e3, 600e3, 12), "K_px": np.linspace(10e6, 80e6, 12)}
     with local_cluster(workers) as cluster, Client(cluster) as client:
-        railhunt.sweep(vehicle, {"mu": [0.3, 0.35]}, client=client)  # workers load numba
-        t0 = time.perf_counter()
-        result = railhunt.sweep(vehicle, study, client=client)
-        return time.perf_counter() - t0, len(result.rows)
+        client.run(warm_up)  # each worker loads the compiled code from numba's cache
+        seconds, result = median_time(lambda: railhunt.sweep(vehicle, study, client=client),
+                                      max(repeat, 2))  # fmt: skip
+        return seconds, len(result.rows)
 
 
 def print_table(rows: list[Row]) -> None:
@@ -304,7 +304,7 @@ def main(argv: list[str] | None = None) -> int:
 
     # Sweep throughput (issue 5): the same study on a local Dask cluster of 1 and 2
     # workers (cluster start-up not timed).
-    rates = {n: sweep_rate(vehicle, n) for n in (1, 2)}
+    rates = {n: sweep_rate(vehicle, n, repeat) for n in (1, 2)}
     for n, (seconds, n_points) in rates.items():
         rows.append(Row(f"sweep of {n_points} points, {n} worker{'s' if n > 1 else ''} "
                         f"({n_points / seconds:.2f} points/s)", seconds))  # fmt: skip

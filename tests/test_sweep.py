@@ -70,6 +70,11 @@ def test_lines_vary_one_parameter_at_a_time():
     assert all(p.values["C_d1"] == VEHICLE.C_d1 for p in points[3:])
 
 
+def test_a_tie_needs_its_leader_varied():
+    with pytest.raises(ValueError, match="f11 is not varied"):
+        build_design(VEHICLE, {"C_d1": [1e5]}, ties={"f22": "f11"})
+
+
 def test_grid_is_the_full_product_and_ties_follow():
     points = build_design(VEHICLE, {"C_d1": [1e5, 2e5], "f11": [4e6, 6e6, 8e6]}, design="grid",
                           ties={"f22": "f11", "f23": ("f11", 0.5)})  # fmt: skip
@@ -149,7 +154,7 @@ def test_row_equals_the_analyses_run_directly(cd1_reference):
     lin = rh.linear_critical_speed(v)
     assert row["linear_critical_speed_kmh"] == lin.speed_kmh
     assert row["linear_frequency_hz"] == lin.frequency_hz
-    hf = rh.hunting_frequency(v, 300.0, initial_amplitude=8e-3)
+    hf = rh.hunting_frequency(v, 300.0, excitation=rh.SingleDefect())
     assert row["hunting_frequency_hz"] == hf.frequency_hz
     assert row["frequency_source"] == hf.source
     assert row["frequency_speed_kmh"] == 300.0 and row["status"] == "ok"
@@ -158,7 +163,7 @@ def test_row_equals_the_analyses_run_directly(cd1_reference):
 def test_yaw_damper_line_follows_fig10a(cd1_reference):
     """Fig. 10a: V_cr rises with C_d1; the hunting frequency at 300 km/h is a limit
     cycle's while V_cr < 300 km/h and the eigenvalue's once V_cr > 300 km/h (the jump), as
-    the paper's Sec. 3.3 defines it."""
+    the paper's Sec. 3.3 defines it (the frequency run uses the search's defect)."""
     result, _ = cd1_reference
     v_cr = result.column("critical_speed_kmh")
     assert np.all(np.diff(v_cr) > 10), v_cr
@@ -244,6 +249,76 @@ def test_store_never_writes_a_point_twice(tmp_path):
     store.write(row)
     store.close(complete=False)
     assert len((tmp_path / "s.csv").read_text().splitlines()) == 2
+
+
+@pytest.mark.parametrize("design", ["random", "lhs"])
+def test_sampled_study_round_trips_and_resumes(tmp_path, design):
+    """Sampled values (NumPy scalars) are written as plain floats and read back exactly;
+    an interrupted sampled study resumes with the same points (same seed)."""
+    ranges = {"mu": (0.1, 0.4), "K_px": (2e7, 6e7)}
+    out = tmp_path / f"{design}.csv"
+    full = sweep(VEHICLE, ranges, LINEAR, design=design, samples=5, seed=3, workers=1, out=out)
+    assert read_results(out).rows == full.rows
+    lines = out.read_text().splitlines(keepends=True)
+    out.write_text("".join(lines[:3]))  # two points survived an interruption
+    again = sweep(VEHICLE, ranges, LINEAR, design=design, samples=5, seed=3, workers=1, out=out,
+                  resume=True)  # fmt: skip
+    assert (again.resumed, again.computed) == (2, 3)
+    assert again.rows == full.rows
+
+
+def test_multiline_message_stays_one_row(tmp_path):
+    meta = {"columns": columns_for(["mu"], LINEAR), "points": 2}
+    store = ResultStore(tmp_path / "m.csv", meta)
+    store.write({"point": 0, "line": "mu", "mu": np.float64(0.2),
+                 "linear_critical_speed_kmh": math.nan, "linear_frequency_hz": math.nan,
+                 "status": "failed", "message": "TypingError: line 1\nline 2"})  # fmt: skip
+    store.close(complete=False)
+    text = (tmp_path / "m.csv").read_text()
+    assert len(text.splitlines()) == 2 and "np.float64" not in text
+    assert read_results(tmp_path / "m.csv").rows[0]["message"] == "TypingError: line 1 line 2"
+
+
+def test_second_writer_is_refused(tmp_path):
+    meta = {"columns": columns_for(["mu"], LINEAR), "points": 2}
+    first = ResultStore(tmp_path / "w.csv", meta)
+    with pytest.raises(ResultFileError, match="another sweep is writing"):
+        ResultStore(tmp_path / "w.csv", meta, resume=True)
+    first.close(complete=False)
+
+
+def test_torn_sidecar_is_tolerated_by_readers(tmp_path):
+    out = tmp_path / "t.csv"
+    sweep(VEHICLE, {"mu": [0.2, 0.3]}, LINEAR, workers=1, out=out)
+    sidecar_path(out).write_text('{"columns": [')  # killed while writing
+    assert len(read_results(out)) == 2
+    with pytest.raises(ResultFileError, match="missing or unreadable"):
+        sweep(VEHICLE, {"mu": [0.2, 0.3]}, LINEAR, workers=1, out=out, resume=True)
+
+
+def test_unreachable_scheduler_leaves_no_stub(tmp_path, monkeypatch):
+    """A study that fails before its first point (here: the scheduler cannot be reached,
+    which Dask reports after its 30 s connect timeout) leaves no file to 'resume'."""
+    import railhunt.studies.sweep as sweep_module
+
+    def unreachable(*args, **kwargs):
+        raise OSError("Timed out trying to connect to tcp://10.0.0.5:8786 after 30 s")
+
+    monkeypatch.setattr(sweep_module, "run_tasks", unreachable)
+    out = tmp_path / "s.csv"
+    with pytest.raises(OSError, match="Timed out"):
+        sweep(VEHICLE, {"mu": [0.2]}, LINEAR, scheduler="tcp://10.0.0.5:8786", out=out)
+    assert not out.exists() and not sidecar_path(out).exists()
+
+
+def test_parquet_resume(tmp_path):
+    pytest.importorskip("pyarrow")
+    values = {"mu": [0.2, 0.3, 0.4]}
+    out = tmp_path / "p.parquet"
+    full = sweep(VEHICLE, values, LINEAR, workers=1, out=out)
+    again = sweep(VEHICLE, values, LINEAR, workers=1, out=out, resume=True)
+    assert again.computed == 0 and again.rows == full.rows
+    assert read_results(out).rows == full.rows
 
 
 def test_parquet_matches_csv(tmp_path):
@@ -332,6 +407,18 @@ def test_interrupted_cli_sweep_resumes(tmp_path, sig, mu_reference):
     assert [r["point"] for r in final.rows] == list(range(20))
     assert len(out.read_text().splitlines()) == 21  # header + each point once
     assert final.rows == mu_reference.rows
+
+
+def test_frequency_source_follows_the_critical_speed():
+    """Sec. 3.3: eigenvalue below V_cr, limit cycle above. With a soft K_px (10 MN/m,
+    V_cr = 329 km/h) an 8 mm release decays at 350 km/h although the defect hunts there;
+    the sweep's frequency run over the defect gives the limit cycle."""
+    point = build_design(VEHICLE, {"K_px": [10e6]})[0]
+    row = evaluate_point(point, VEHICLE, ("critical_speed", "hunting_frequency"), 350.0)
+    assert row["critical_speed_kmh"] < 350
+    assert row["frequency_source"] == "limit-cycle" and 4.5 < row["hunting_frequency_hz"] < 6
+    released = rh.hunting_frequency(VEHICLE.replace(K_px=10e6), 350.0, initial_amplitude=8e-3)
+    assert released.source == "eigenvalue"
 
 
 def test_soft_primary_longitudinal_stiffness_keeps_the_hunting_mode():

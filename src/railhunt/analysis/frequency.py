@@ -22,7 +22,7 @@ from railhunt.analysis.critical import HUNTING, STABLE, Judgement, judge
 from railhunt.analysis.linear import eigen_analysis
 from railhunt.analysis.periodic import periodic_orbit, phase_origin
 from railhunt.model import N_STATE, WHEELSET_Y, Y_W1, Model
-from railhunt.simulation import Y_LIMIT, auto_step, integrate_model
+from railhunt.simulation import Y_LIMIT, auto_step, excitation_end_time, integrate_model
 from railhunt.vehicle import Vehicle
 
 
@@ -127,26 +127,30 @@ class HuntingFrequency:
         return out
 
 
-def _release(model: Model, speed: float, amplitude: float, judgement: Judgement, dt: float,
-             output_dt: float):  # fmt: skip
-    """Simulate from all wheelsets displaced by ``amplitude`` until the verdict is clear."""
+def _record(model: Model, speed: float, judgement: Judgement, dt: float, output_dt: float,
+            amplitude: float, excitation: object = None):  # fmt: skip
+    """Simulate until the verdict is clear: from every wheelset displaced by ``amplitude``,
+    or from the centre over ``excitation`` (judged once the last wheelset has left it)."""
     x0 = np.zeros(N_STATE)
-    x0[WHEELSET_Y] = amplitude
+    if excitation is None:
+        x0[WHEELSET_Y] = amplitude
+    t_start = excitation_end_time(model, excitation, speed)
     ts, xs = [], []
-    t0, x_start, code = 0.0, x0, 0
+    t0, x_start, code, duration = 0.0, x0, 0, t_start + judgement.chunk
     while True:
-        t, x, code, _ = integrate_model(model, speed, judgement.chunk, x_start, t0=t0, dt=dt,
-                                        output_dt=output_dt, y_limit=Y_LIMIT)  # fmt: skip
+        t, x, code, _ = integrate_model(model, speed, duration, x_start, t0=t0, dt=dt,
+                                        excitation=excitation, output_dt=output_dt,
+                                        y_limit=Y_LIMIT)  # fmt: skip
         ts.append(t if not ts else t[1:])
         xs.append(x if not xs else x[1:])
         tt = np.concatenate(ts)
         if code != 0:
             return HUNTING, tt, np.concatenate(xs), code
-        final = tt[-1] >= judgement.max_duration - 1e-9
-        verdict, _, _ = judge(tt, np.concatenate(xs)[:, Y_W1], 0.0, judgement, final=final)
+        final = tt[-1] - t_start >= judgement.max_duration - 1e-9
+        verdict, _, _ = judge(tt, np.concatenate(xs)[:, Y_W1], t_start, judgement, final=final)
         if verdict is not None:
             return verdict, tt, np.concatenate(xs), code
-        t0, x_start = float(t[-1]), x[-1].copy()
+        t0, x_start, duration = float(t[-1]), x[-1].copy(), judgement.chunk
 
 
 def hunting_frequency(
@@ -159,6 +163,7 @@ def hunting_frequency(
     refine: bool = True,
     creep_law: str = "heuristic",
     model: Model | None = None,
+    excitation: object = None,
 ) -> HuntingFrequency:
     """Hunting frequency of the leading wheelset at one speed (the paper's Sec. 3.3).
 
@@ -185,6 +190,12 @@ def hunting_frequency(
         See :class:`railhunt.model.Model`.
     model : Model, optional
         A prebuilt model of ``vehicle`` (saves rebuilding it in loops).
+    excitation : SingleDefect, optional
+        Run from the centred state over this track defect instead of releasing the
+        wheelsets from ``initial_amplitude`` (which is then ignored). With the defect of
+        :func:`railhunt.critical_speed`, the frequency is the limit cycle's exactly when
+        that search would judge this speed hunting: the paper's Sec. 3.3 definition
+        (eigenvalue below V_cr, limit cycle above).
 
     Returns
     -------
@@ -215,7 +226,8 @@ def hunting_frequency(
     f_eig = float(eig.hunting_frequency_hz[0])
     zeta = float(eig.hunting_damping_ratio[0])
     dt = auto_step(model, speed)
-    verdict, t, x, code = _release(model, speed, initial_amplitude, judgement, dt, 2e-3)
+    verdict, t, x, code = _record(model, speed, judgement, dt, 2e-3, initial_amplitude,
+                                  excitation)  # fmt: skip
     y = x[:, Y_W1]
     vd = model.damper_velocities(x[:, 34:38]) if x.size else np.empty((0, 4))
     v_u = vehicle.F_u / vehicle.C_d1

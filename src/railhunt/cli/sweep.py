@@ -31,8 +31,9 @@ Each NAME is a vehicle parameter ('railhunt parameters' lists them) and
 takes its own --from/--to/--num, in the order given (one --num applies to
 all). Values are SI, as in --set (N*s/m, N/m, N, -). Every point runs the
 nonlinear critical-speed search (8 mm defect, bisection to 1 km/h), the
-linear critical speed (Hopf point) and the hunting frequency after an 8 mm
-release of every wheelset (at 300 km/h for the yaw-damper parameters C_d1, C_d2, K_d, F_u and
+linear critical speed (Hopf point) and the hunting frequency over the same
+defect: the eigenvalue's if the motion decays, the limit cycle's if it
+hunts (at 300 km/h for the yaw-damper parameters C_d1, C_d2, K_d, F_u and
 350 km/h for the others, as in the paper; --frequency-speed overrides).
 
 \b
@@ -57,6 +58,10 @@ Examples:
   railhunt sweep mu --from 0.05 --to 0.5 --num 10 --out mu.csv --resume
   railhunt sweep --table1 --out table1.csv      # the paper's Figs. 10-12
 """
+
+
+#: Largest study the command line starts (a grid grows as the product of its --num).
+_MAX_POINTS = 1_000_000
 
 
 def _parse_ties(ctx: click.Context, param: click.Parameter,
@@ -111,6 +116,9 @@ def _ranges(names, froms, tos, nums, spacing, design):
             continue
         if not 1 <= n <= 100_000:
             raise CliError(f"{name}: --num {n} is invalid: must be in [1, 100000]")
+        if n > 1 and lo == hi:
+            raise CliError(f"{name}: --from and --to are both {lo:g}: {n} points would be the "
+                           "same point (use --num 1)")  # fmt: skip
         if spacing == "log":
             if lo <= 0:
                 raise CliError(f"{name}: --spacing log needs --from > 0, got {lo:g}")
@@ -148,10 +156,10 @@ def _ranges(names, froms, tos, nums, spacing, design):
 @click.option("--frequency-speed", "frequency_kmh", type=float, metavar="KMH",
               help="Speed of the hunting-frequency run (km/h) [default: 300 for yaw-damper "
                    "parameters, 350 otherwise].")
-@click.option("--frequency-amplitude", "amplitude_mm", type=float, default=8.0,
-              show_default=True, metavar="MM",
-              callback=_number_range("mm", 0.0, 20.0),
-              help="Initial lateral displacement of every wheelset in the frequency run (mm).")
+@click.option("--frequency-amplitude", "amplitude_mm", type=float, metavar="MM",
+              callback=_number_range("mm", 0.0, 20.0, optional=True),
+              help="Release every wheelset from MM for the frequency run [default: run over "
+                   "the critical-speed defect, as the paper's Sec. 3.3 defines it].")
 @click.option("--out", "out", type=click.Path(dir_okay=False, path_type=Path), required=True,
               metavar="FILE", help="Results file (.csv, or .parquet with pyarrow).")
 @click.option("--resume", is_flag=True, help="Continue FILE: compute only its missing points.")
@@ -175,15 +183,18 @@ def sweep(names, table1, per_section, froms, tos, nums, spacing, design, samples
         raise CliError("--workers sets the local cluster; a --scheduler cluster has its own")
     if workers is not None and not 1 <= workers <= 1024:
         raise CliError(f"--workers {workers} is invalid: must be in [1, 1024]")
-    chosen = tuple(o.strip() for o in outputs.split(",") if o.strip())
+    chosen = tuple(dict.fromkeys(o.strip() for o in outputs.split(",") if o.strip()))
     bad = [o for o in chosen if o not in OUTPUTS]
     if bad or not chosen:
         raise CliError(f"--outputs {outputs}: choose from {', '.join(OUTPUTS)}")
     _check_outputs(out=out)
     vehicle = _build_vehicle(vehicle_file, sets)
+    if samples is not None and design not in ("random", "lhs"):
+        raise CliError(f"--samples is for the random and lhs designs, not {design!r}")
     if table1:
-        if froms or tos or nums or design != "lines":
-            raise CliError("--table1 sets the values itself: drop --from/--to/--num/--design")
+        if froms or tos or nums or design != "lines" or spacing != "linear":
+            raise CliError("--table1 sets the values itself: drop --from/--to/--num/--design/"
+                           "--spacing")  # fmt: skip
         from railhunt.studies.sections import table1_study
 
         with _user_input("--table1: "):
@@ -193,12 +204,18 @@ def sweep(names, table1, per_section, froms, tos, nums, spacing, design, samples
         raise CliError("give at least one parameter NAME with --from/--to, or --table1")
     else:
         parameters = _ranges(names, froms, tos, nums, spacing, design)
+        if design == "grid":
+            size = math.prod(len(v) for v in parameters.values())
+            if size > _MAX_POINTS:
+                raise CliError(f"--design grid gives {size} points: at most {_MAX_POINTS} "
+                               "(use --design lhs --samples N for large spaces)")  # fmt: skip
     progress = _show_progress()
     try:
         with _user_input():
             result = run_sweep(vehicle, parameters, chosen, design=design, samples=samples,
                                seed=seed, ties=ties, frequency_speed_kmh=frequency_kmh,
-                               frequency_amplitude=amplitude_mm * 1e-3, out=out,
+                               frequency_amplitude=None if amplitude_mm is None
+                               else amplitude_mm * 1e-3, out=out,
                                resume=resume, overwrite=overwrite, scheduler=scheduler,
                                workers=workers, progress=progress)  # fmt: skip
     except ResultFileError as exc:

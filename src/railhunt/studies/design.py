@@ -18,7 +18,9 @@ Four designs are offered:
     ``samples`` strata and every stratum is used once per parameter).
 
 Tied parameters follow a leader: ``ties={"f22": "f11"}`` sets f22 equal to f11 at every
-point, ``ties={"f22": ("f11", 0.9)}`` to 0.9 f11.
+point, ``ties={"f22": ("f11", 0.9)}`` to 0.9 f11. A tie holds at every point of the study,
+including the points of other lines (where the leader has its nominal value), so that one
+study describes one family of vehicles; its leader must be varied.
 """
 
 from __future__ import annotations
@@ -164,14 +166,17 @@ def build_design(
         if follower in parameters:
             raise ValueError(f"{follower} is both varied and tied to {tie_map[follower][0]}: "
                              "drop one of the two")  # fmt: skip
-    # Only ties whose leader takes part in the study add a column.
-    tie_map = {f: lf for f, lf in tie_map.items() if lf[0] in parameters}
+    for follower, (leader, _) in tie_map.items():
+        if leader not in parameters:
+            raise ValueError(f"tie {follower} = {leader}: {leader} is not varied in this study "
+                             f"(set {follower} on the vehicle instead)")  # fmt: skip
     names = list(parameters)
     nominal = vehicle.as_dict()
     points: list[Point] = []
 
     def add(line: str, values: dict[str, float]) -> None:
-        points.append(Point(len(points), line, _tied(values, tie_map)))
+        plain = {k: float(v) for k, v in values.items()}  # no numpy scalars in the files
+        points.append(Point(len(points), line, _tied(plain, tie_map)))
 
     if design in ("lines", "grid"):
         arrays = {name: _check_values(name, parameters[name]) for name in names}
@@ -208,9 +213,21 @@ def build_design(
 def frequency_speed(point: Point, names: Sequence[str], stated_kmh: float | None) -> float:
     """Speed of a point's hunting-frequency run (km/h).
 
-    The stated speed if given; otherwise the paper's: 300 km/h when every parameter the
-    point varies is a yaw-damper parameter (``C_d1``, ``C_d2``, ``K_d``, ``F_u``), else
-    350 km/h.
+    Parameters
+    ----------
+    point : Point
+        The point.
+    names : sequence of str
+        The parameters the study varies.
+    stated_kmh : float, optional
+        A speed stated by the user (km/h).
+
+    Returns
+    -------
+    float
+        The stated speed if given; otherwise the paper's: 300 km/h when every parameter
+        the point varies is a yaw-damper parameter (``C_d1``, ``C_d2``, ``K_d``, ``F_u``),
+        else 350 km/h.
     """
     if stated_kmh is not None:
         return float(stated_kmh)

@@ -57,7 +57,18 @@ def default_workers() -> int:
 
 
 def check_workers(workers: int | None) -> int:
-    """Validate ``workers`` (None: all cores)."""
+    """Validate a number of worker processes.
+
+    Parameters
+    ----------
+    workers : int, optional
+        Requested number; None means all cores (:func:`default_workers`).
+
+    Returns
+    -------
+    int
+        The number of workers, in [1, 1024].
+    """
     if workers is None:
         return default_workers()
     if isinstance(workers, bool) or int(workers) != workers or not 1 <= workers <= 1024:
@@ -144,8 +155,10 @@ def run_tasks(
                 if future.status == "finished":
                     on_result(future.result())
                 else:
-                    exc = future.exception()
-                    lost.append((index[future.key], f"{type(exc).__name__}: {exc}"))
+                    exc = future.exception() if future.status == "error" else None
+                    reason = (f"{type(exc).__name__}: {exc}" if exc is not None
+                              else f"task {future.status}")  # fmt: skip
+                    lost.append((index[future.key], reason))
                 future.release()
         except BaseException:
             client.cancel(futures)

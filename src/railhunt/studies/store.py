@@ -15,10 +15,12 @@ journal is removed once the study is complete.
 from __future__ import annotations
 
 import csv
+import fcntl
 import hashlib
 import io
 import json
 import math
+import numbers
 import os
 import time
 from collections.abc import Iterable, Mapping, Sequence
@@ -45,7 +47,20 @@ class ResultFileError(ValueError):
 
 
 def columns_for(parameters: Sequence[str], outputs: Sequence[str]) -> list[str]:
-    """Column names of a results file, in order."""
+    """Column names of a results file, in order.
+
+    Parameters
+    ----------
+    parameters : sequence of str
+        The parameter columns (SI values).
+    outputs : sequence of str
+        Output names (keys of :data:`OUTPUT_COLUMNS`).
+
+    Returns
+    -------
+    list of str
+        ``point``, ``line``, the parameters, the outputs' columns, ``status``, ``message``.
+    """
     cols = ["point", "line", *parameters]
     for name in outputs:
         cols.extend(OUTPUT_COLUMNS[name])
@@ -68,15 +83,31 @@ def is_parquet(path: Path) -> bool:
 
 
 def fingerprint(meta: Mapping[str, Any]) -> str:
-    """SHA-256 of a study description (canonical JSON)."""
+    """SHA-256 of a study description.
+
+    Parameters
+    ----------
+    meta : Mapping
+        The description (JSON types).
+
+    Returns
+    -------
+    str
+        Hex digest of its canonical JSON (sorted keys).
+    """
     text = json.dumps(meta, sort_keys=True, separators=(",", ":"))
     return hashlib.sha256(text.encode()).hexdigest()
 
 
 def _cell(value: object) -> str:
-    if isinstance(value, float):
+    if isinstance(value, numbers.Integral) and not isinstance(value, bool):
+        return str(int(value))
+    if isinstance(value, numbers.Real) and not isinstance(value, bool):
+        value = float(value)  # numpy scalars included: repr() of a float round-trips
         return "nan" if math.isnan(value) else repr(value)
-    return "" if value is None else str(value)
+    if value is None:
+        return ""
+    return " ".join(str(value).split())  # one line per point, whatever the message
 
 
 def _parse(name: str, text: str) -> object:
@@ -233,6 +264,22 @@ def _unique_sorted(rows: Iterable[dict[str, Any]]) -> list[dict[str, Any]]:
     return [by_point[k] for k in sorted(by_point)]
 
 
+def _read_sidecar(path: Path) -> dict[str, Any] | None:
+    """The study description, or None if it is missing or unreadable (torn by a kill)."""
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    return data if isinstance(data, dict) else None
+
+
+def _write_atomic(path: Path, text: str) -> None:
+    """Write ``text`` to ``path`` through a temporary file and a rename (never torn)."""
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(text, encoding="utf-8")
+    os.replace(tmp, path)
+
+
 def read_results(path: str | os.PathLike[str]) -> SweepResults:
     """Read a results file (CSV or Parquet) written by :func:`railhunt.sweep`.
 
@@ -264,10 +311,7 @@ def read_results(path: str | os.PathLike[str]) -> SweepResults:
     if not header or "point" not in header or "line" not in header:
         raise ResultFileError(f"{path}: not a railhunt results file (no 'point' and 'line' "
                               "columns)")  # fmt: skip
-    meta: dict[str, Any] = {}
-    side = sidecar_path(path)
-    if side.exists():
-        meta = json.loads(side.read_text(encoding="utf-8"))
+    meta = _read_sidecar(sidecar_path(path)) or {}
     meta.setdefault("columns", header)
     return SweepResults(_unique_sorted(rows), meta, path)
 
@@ -302,19 +346,30 @@ class ResultStore:
             _require_pyarrow()
         self.rows: dict[int, dict[str, Any]] = {}
         exists = self.path.exists() or self.journal.exists()
-        if exists and resume:
-            self._load_for_resume()
-        elif exists and not overwrite:
+        if exists and not resume and not overwrite:
             raise ResultFileError(f"{self.path} exists: resume it (--resume / resume=True), "
                                   "overwrite it (--overwrite), or choose another file")  # fmt: skip
-        else:
+        if exists and not resume:
             for p in (self.path, self.journal):
-                if p.exists():
-                    p.unlink()
+                p.unlink(missing_ok=True)
         self.path.parent.mkdir(parents=True, exist_ok=True)
-        self.side.write_text(json.dumps(self.meta, indent=1) + "\n", encoding="utf-8")
-        new = not self.journal.exists() or self.journal.stat().st_size == 0
+        self.created = not self.journal.exists()
         self._fh = open(self.journal, "a", encoding="utf-8", newline="")  # noqa: SIM115
+        try:  # one writer per file: a second sweep on it would duplicate points
+            fcntl.flock(self._fh.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            self._fh.close()
+            raise ResultFileError(f"another sweep is writing {self.journal}; wait for it or "
+                                  "choose another file") from None  # fmt: skip
+        try:
+            if exists and resume:
+                self._load_for_resume()  # under the lock: it may cut a torn last line
+        except BaseException:
+            self._fh.close()
+            raise
+        self.created = self.created and not self.rows
+        new = self.journal.stat().st_size == 0
+        _write_atomic(self.side, json.dumps(self.meta, indent=1) + "\n")
         self._writer = csv.writer(self._fh, lineterminator="\n")
         if new:
             self._writer.writerow(self.columns)
@@ -327,10 +382,10 @@ class ResultStore:
         return set(self.rows)
 
     def _load_for_resume(self) -> None:
-        if not self.side.exists():
+        old = _read_sidecar(self.side)
+        if old is None:
             raise ResultFileError(f"cannot resume {self.path}: its study description "
-                                  f"{self.side.name} is missing")  # fmt: skip
-        old = json.loads(self.side.read_text(encoding="utf-8"))
+                                  f"{self.side.name} is missing or unreadable")  # fmt: skip
         if old.get("fingerprint") != self.meta["fingerprint"]:
             differ = sorted(k for k in set(old) | set(self.meta)
                             if k != "fingerprint" and old.get(k) != self.meta.get(k))  # fmt: skip
@@ -346,8 +401,8 @@ class ResultStore:
                 raise ResultFileError(f"cannot resume {self.journal}: its columns differ from "
                                       "the study's")  # fmt: skip
             rows += jrows
-        elif self.path.exists():
-            # A finished Parquet study: start a new journal holding its rows.
+        if self.parquet and self.path.exists() and self.journal.stat().st_size == 0:
+            # A finished Parquet study: start the (new, empty) journal with its rows.
             with open(self.journal, "w", encoding="utf-8", newline="") as fh:
                 w = csv.writer(fh, lineterminator="\n")
                 w.writerow(self.columns)
@@ -403,6 +458,11 @@ class ResultStore:
             Every point of the design is in the file.
         """
         self._fh.close()
+        if not self.rows and self.created and not complete:
+            # Nothing computed (e.g. the cluster could not be reached): leave no stub.
+            for p in (self.journal, self.side):
+                p.unlink(missing_ok=True)
+            return
         if self.parquet:
             if self.rows:
                 self._write_parquet()
@@ -410,6 +470,4 @@ class ResultStore:
                 self.journal.unlink(missing_ok=True)
             return
         if complete:
-            tmp = self.path.with_name(self.path.name + ".tmp")
-            tmp.write_text(self.results().to_csv_text(), encoding="utf-8")
-            os.replace(tmp, self.path)
+            _write_atomic(self.path, self.results().to_csv_text())

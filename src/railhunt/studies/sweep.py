@@ -50,7 +50,7 @@ def evaluate_point(
     frequency_speed_kmh: float = 350.0,
     excitation: object = None,
     creep_law: str = "heuristic",
-    frequency_amplitude: float = 8e-3,
+    frequency_amplitude: float | None = None,
 ) -> dict[str, Any]:
     """Evaluate one point of a study: the results row of ``vehicle`` changed by the point.
 
@@ -63,16 +63,17 @@ def evaluate_point(
     outputs : sequence of str
         Any of ``"critical_speed"`` (nonlinear, by bisection with ``excitation``),
         ``"linear_critical_speed"`` (Hopf point) and ``"hunting_frequency"`` (at
-        ``frequency_speed_kmh`` after releasing every wheelset from
-        ``frequency_amplitude``).
+        ``frequency_speed_kmh``, over ``excitation`` or after releasing every wheelset
+        from ``frequency_amplitude``).
     frequency_speed_kmh : float
         Speed of the hunting-frequency run (km/h).
     excitation : SingleDefect, optional
         Excitation of the critical-speed search (default: its 8 mm defect).
     creep_law : str
         See :class:`railhunt.model.Model`.
-    frequency_amplitude : float
-        Initial lateral displacement of every wheelset for the hunting frequency (m).
+    frequency_amplitude : float, optional
+        Initial lateral displacement of every wheelset for the hunting frequency (m);
+        default: run over ``excitation``, as the critical-speed search does.
 
     Returns
     -------
@@ -106,8 +107,13 @@ def evaluate_point(
             row["linear_critical_speed_kmh"] = float(lin.speed_kmh)
             row["linear_frequency_hz"] = float(lin.frequency_hz)
         if "hunting_frequency" in outputs:
-            hf = hunting_frequency(v, frequency_speed_kmh, initial_amplitude=frequency_amplitude,
-                                   creep_law=creep_law)  # fmt: skip
+            if frequency_amplitude is None:
+                defect = SingleDefect() if excitation is None else excitation
+                hf = hunting_frequency(v, frequency_speed_kmh, creep_law=creep_law,
+                                       excitation=defect)  # fmt: skip
+            else:
+                hf = hunting_frequency(v, frequency_speed_kmh, frequency_amplitude,
+                                       creep_law=creep_law)  # fmt: skip
             row["hunting_frequency_hz"] = float(hf.frequency_hz)
             row["frequency_source"] = hf.source
     except Exception as exc:  # noqa: BLE001 - one bad point must not end a study
@@ -135,7 +141,8 @@ def _interrupted(exc: BaseException) -> bool:
 
 
 def _task(point: Point, vehicle: Vehicle, outputs: tuple[str, ...], speeds: dict[int, float],
-          excitation: object, creep_law: str, amplitude: float) -> dict[str, Any]:  # fmt: skip
+          excitation: object, creep_law: str,
+          amplitude: float | None) -> dict[str, Any]:  # fmt: skip
     return evaluate_point(point, vehicle, outputs, speeds[point.index], excitation, creep_law,
                           amplitude)  # fmt: skip
 
@@ -162,7 +169,7 @@ def sweep(
     seed: int = 0,
     ties: Mapping[str, object] | None = None,
     frequency_speed_kmh: float | None = None,
-    frequency_amplitude: float = 8e-3,
+    frequency_amplitude: float | None = None,
     excitation: object = None,
     creep_law: str = "heuristic",
     out: str | Path | None = None,
@@ -197,13 +204,14 @@ def sweep(
     frequency_speed_kmh : float, optional
         Speed of the hunting-frequency run (km/h); default the paper's: 300 km/h for lines
         of yaw-damper parameters (C_d1, C_d2, K_d, F_u), 350 km/h otherwise.
-    frequency_amplitude : float
+    frequency_amplitude : float, optional
         Initial lateral displacement of every wheelset in the hunting-frequency run (m),
-        in (0, 0.02]. The default 8 mm, the amplitude of the critical-speed defect, makes
-        the frequency the large limit cycle's whenever the frequency speed is above the
-        point's nonlinear critical speed (the paper's Sec. 3.3 and its Figs. 10-11, where
-        the jump sits where V_cr crosses the frequency speed); 3 mm (the paper's Fig. 7b)
-        moves the jump to the speed of the unstable cycle of 3 mm instead.
+        in (0, 0.02]. By default the frequency run goes over the critical-speed search's
+        ``excitation`` instead, so the frequency is the limit cycle's exactly when that
+        search would judge the frequency speed hunting: the paper's Sec. 3.3 (eigenvalue
+        below V_cr, limit cycle above) and its Figs. 10-11, whose jumps sit where V_cr
+        crosses the frequency speed. A release from 3 mm (the paper's Fig. 7b) puts the
+        jump at the speed of the unstable 3 mm cycle instead.
     excitation : SingleDefect, optional
         Excitation of the critical-speed search (default 8 mm, 20 m defect).
     creep_law : str
@@ -240,7 +248,8 @@ def sweep(
                          "be in (0, 1000] km/h")  # fmt: skip
     if client is None and scheduler is None:
         check_workers(workers)
-    if not (math.isfinite(frequency_amplitude) and 0 < frequency_amplitude <= 0.02):
+    if frequency_amplitude is not None and not (math.isfinite(frequency_amplitude)
+                                                and 0 < frequency_amplitude <= 0.02):  # fmt: skip
         raise ValueError(f"frequency_amplitude = {frequency_amplitude!r} m is invalid: must be "
                          "in (0, 0.02] m")  # fmt: skip
     if excitation is None:
@@ -250,26 +259,9 @@ def sweep(
     for p in points:  # every combination must make a valid vehicle, before any work starts
         vehicle.replace(**p.values)
     names = list(parameters)
-    param_cols = list(points[0].values)
     speeds = {p.index: frequency_speed(p, names, frequency_speed_kmh) for p in points}
-    meta: dict[str, Any] = {
-        "railhunt": _version(),
-        "vehicle": {"name": vehicle.name, "parameters": vehicle.as_dict(),
-                    "contact": repr(vehicle.contact)},  # fmt: skip
-        "design": design,
-        "parameters": {n: (_json_values(parameters[n])) for n in names},
-        "samples": samples,
-        "seed": seed if design in ("random", "lhs") else None,
-        "ties": {f: [lf[0], lf[1]] for f, lf in tie_map.items()},
-        "outputs": list(outputs),
-        "frequency_speed_kmh": frequency_speed_kmh,
-        "frequency_amplitude": frequency_amplitude,
-        "excitation": repr(excitation),
-        "creep_law": creep_law,
-        "points": len(points),
-        "parameter_columns": param_cols,
-        "columns": columns_for(param_cols, outputs),
-    }
+    meta = _describe(vehicle, parameters, outputs, design, samples, seed, tie_map, points,
+                     speeds, frequency_amplitude, excitation, creep_law)  # fmt: skip
     start = time.perf_counter()
     store = ResultStore(out, meta, resume=resume, overwrite=overwrite) if out else None
     rows: dict[int, dict[str, Any]] = dict(store.rows) if store else {}
@@ -313,7 +305,43 @@ def sweep(
     return result
 
 
-def _version() -> str:
-    from railhunt import __version__
+def _describe(vehicle: Vehicle, parameters: Mapping[str, object], outputs: tuple[str, ...],
+              design: str, samples: int | None, seed: int,
+              tie_map: dict[str, tuple[str, float]], points: list[Point],
+              speeds: dict[int, float], frequency_amplitude: float | None,
+              excitation: object, creep_law: str) -> dict[str, Any]:  # fmt: skip
+    """The study description of a results file's sidecar; its fingerprint decides resume.
 
-    return __version__
+    It holds what changes the numbers and nothing else: the railhunt version and a hash
+    of its sources (a file is not resumed by changed code), the vehicle's parameters and
+    contact description (not its name), the design and its points' resolved options, and
+    only the options the chosen outputs use.
+    """
+    from railhunt import __version__
+    from railhunt._cache import source_hash
+
+    names = list(parameters)
+    param_cols = list(points[0].values)
+    meta: dict[str, Any] = {
+        "railhunt": __version__,
+        "source": source_hash(),
+        "vehicle": {"parameters": vehicle.as_dict(), "contact": repr(vehicle.contact)},
+        "design": design,
+        "parameters": {n: _json_values(parameters[n]) for n in names},
+        "ties": {f: [lf[0], lf[1]] for f, lf in tie_map.items()},
+        "outputs": list(outputs),
+        "creep_law": creep_law,
+        "points": len(points),
+        "parameter_columns": param_cols,
+        "columns": columns_for(param_cols, outputs),
+    }
+    if design in ("random", "lhs"):
+        meta.update(samples=samples, seed=seed)
+    if "hunting_frequency" in outputs:
+        by_line = {p.line: speeds[p.index] for p in points}
+        meta["frequency_speed_kmh"] = by_line
+        meta["frequency_amplitude"] = frequency_amplitude
+    if "critical_speed" in outputs or ("hunting_frequency" in outputs
+                                       and frequency_amplitude is None):  # fmt: skip
+        meta["excitation"] = repr(excitation)
+    return meta
