@@ -419,16 +419,3 @@ def test_frequency_source_follows_the_critical_speed():
     assert row["frequency_source"] == "limit-cycle" and 4.5 < row["hunting_frequency_hz"] < 6
     released = rh.hunting_frequency(VEHICLE.replace(K_px=10e6), 350.0, initial_amplitude=8e-3)
     assert released.source == "eigenvalue"
-
-
-def test_soft_primary_longitudinal_stiffness_keeps_the_hunting_mode():
-    """With K_px = 10 MN/m, at 350 km/h a heavily damped wheelset creep mode near 0.9 Hz
-    (damping ratio 0.7) decays more slowly than the 5 Hz hunting mode. hunting_frequency
-    follows the hunting mode down from where it is least damped, so the K_px line of
-    Fig. 11c does not drop to 0.9 Hz at its soft end."""
-    soft = VEHICLE.replace(K_px=10e6)
-    one_speed = rh.eigen_analysis(soft, [350.0])
-    assert one_speed.hunting_frequency_hz[0] < 1.5  # the trap: the creep mode wins alone
-    hf = rh.hunting_frequency(soft, 350.0, initial_amplitude=1e-3)
-    assert hf.source == "eigenvalue"
-    assert 4.0 < hf.frequency_hz < 6.0 and hf.eigen_damping_ratio < 0.3
