@@ -308,6 +308,13 @@ def test_sweep_headline_from_lines():
     assert out["fig12b_df_K_px_hz"].railhunt == pytest.approx(0.55)
     assert out["fig12b_df_C_sy_hz"].railhunt == pytest.approx(0.2)
     assert "fig12a_dvcr_mu_kmh" not in out  # no mu line: no row
+    # Trends, judged on each line's ends: V_cr rises with C_d1 (150 -> 325) and K_px, f falls
+    # with K_px; C_sy's f falls (5.4 -> 3.8) as the paper says.
+    assert out["fig10a_trend_vcr_cd1"].agrees is True
+    assert out["fig11c_trend_vcr_kpx"].agrees is True
+    assert out["fig11c_trend_f_kpx"].agrees is True
+    assert out["fig11d_trend_f_csy"].railhunt == "5.4 → 3.8"
+    assert "fig11a_trend_vcr_mu" not in out
     assert all(r.quote for r in out.values())
 
 

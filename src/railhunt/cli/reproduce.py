@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import contextlib
-import os
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
@@ -17,19 +16,13 @@ from railhunt.cli import CliError, _show_progress, _stdout_console, main
 def _dask_client(scheduler: str | None, workers: int | None) -> Iterator[Any]:
     """A Dask client: joined to ``scheduler``, or a new local cluster of ``workers`` processes.
 
-    Yields None (everything runs in this process) for ``--workers 1`` or when Dask is not
-    installed and no scheduler was asked for.
+    Yields None (everything runs in this process) for ``--workers 1``.
     """
     if scheduler is None and workers == 1:
         yield None
         return
-    try:
-        from dask.distributed import Client, LocalCluster
-    except ImportError:
-        if scheduler is not None:
-            raise CliError("--scheduler needs Dask: pip install 'railhunt[dask]'") from None
-        yield None
-        return
+    from distributed import Client
+
     if scheduler is not None:
         try:
             client = Client(scheduler, timeout="10s")
@@ -38,9 +31,9 @@ def _dask_client(scheduler: str | None, workers: int | None) -> Iterator[Any]:
         with client:
             yield client
         return
-    n = workers or os.cpu_count() or 1
-    with LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                      dashboard_address=None) as cluster, Client(cluster) as client:  # fmt: skip
+    from railhunt.studies.execute import check_workers, local_cluster
+
+    with local_cluster(check_workers(workers)) as cluster, Client(cluster) as client:
         yield client
 
 
@@ -66,6 +59,17 @@ def _step_progress() -> Iterator[Callable[[str, str], None] | None]:
                             description=f"{title}: [{style}]{state}[/{style}]")  # fmt: skip
 
         yield update
+
+
+def _with_unit(value: object, unit: str) -> str:
+    """A table cell: a number (or a bound such as '< 50') with its unit, text as it is."""
+    from railhunt.studies.reproduce import _show
+
+    if value is None:
+        return "not available"
+    text = _show(value)
+    numeric = isinstance(value, int | float) or str(value)[:1] in "<>"
+    return f"{text} {unit}" if unit and numeric else text
 
 
 def _difference_style(agrees: bool | None) -> str:
@@ -114,9 +118,9 @@ def reproduce(out_dir: Path, quick: bool, scheduler: str | None, workers: int | 
     with _spinner("loading the compiled model"):
         # Compile (or load) numba's cache here, before any worker starts: workers that
         # compile the same cache at once can crash (numba issue #4807).
-        from railhunt.analysis.frequency import hunting_frequency
+        from railhunt.studies.sweep import warm_up
 
-        hunting_frequency(vehicle, 400.0)
+        warm_up()
     stack = contextlib.ExitStack()
     with _spinner("starting Dask workers"):
         client = stack.enter_context(_dask_client(scheduler, workers))
@@ -131,9 +135,8 @@ def reproduce(out_dir: Path, quick: bool, scheduler: str | None, workers: int | 
         table.add_column(head, justify="left" if head == "quantity (where)" else "right")
     for row in report.headline:
         style = _difference_style(row.agrees)
-        unit = f" {row.unit}" if row.unit and row.railhunt is not None else ""
-        table.add_row(f"{row.quantity} ({row.where})", f"{row.paper_text}{unit}",
-                      f"{row.railhunt_text}{unit}",
+        table.add_row(f"{row.quantity} ({row.where})", _with_unit(row.paper, row.unit),
+                      _with_unit(row.railhunt, row.unit),
                       f"[{style}]{row.difference}[/{style}]")  # fmt: skip
     out = _stdout_console()
     out.print(table)

@@ -35,10 +35,6 @@ NO_BLOWOFF = 1e12
 #: Yaw damper parameters (the paper's Fig. 10) and the others of Fig. 11, in figure order.
 FIG10_LINES = ("C_d1", "C_d2", "K_d")
 FIG11_LINES = ("mu", "f11", "K_px", "C_sy")
-#: Display scale and unit of the swept parameters (the contract's display units).
-DISPLAY = {"C_d1": (1e-3, "kN·s/m"), "C_d2": (1e-3, "kN·s/m"), "C_sy": (1e-3, "kN·s/m"),
-           "K_d": (1e-6, "MN/m"), "K_px": (1e-6, "MN/m"), "f11": (1e-6, "MN"),
-           "mu": (1.0, "-")}  # fmt: skip
 _BIFURCATION_DOC = "docs/bifurcation.md, section 'The default vehicle (measured)'"
 
 
@@ -627,6 +623,29 @@ _Q_12B = ("The parameters of K_px and C_sy, by contrast, have less influence on 
 _NOTE_SWEEP = ("railhunt's nonlinear critical speed of the default vehicle is 20 km/h below "
                "the paper's (Fig. 6 row), which shifts the levels and jump positions: see "
                "docs/reproduce.md.")  # fmt: skip
+_Q_10A_TREND = "It can be seen that V_cr increases logarithmically with the increase in C_d1"
+_Q_11A = "The V_cr decreases with the increase in u, as shown in Figure 11(a)."
+_Q_11B = ("Figure 11(b) shows the results of f_11 (f_22), and it can be seen that, with the "
+          "increasing of f_11 (f_22), V_cr decreases gradually, f increases overall")  # fmt: skip
+_Q_11D = ("As for C_sy, the influences on both V_cr and f are coincident with the results of "
+          "K_px in the trend")  # fmt: skip
+_NOTE_TRENDS = ("railhunt's V_cr of the nominal vehicle is 20 km/h below the paper's; why the "
+                "K_px and C_sy trends differ is not established (docs/studies.md, 'The paper's "
+                "study, measured').")  # fmt: skip
+#: Trends of the paper's Figs. 10-11: (key, line, quantity, where, "v" (V_cr) or "f",
+#: rises?, quote). Judged on the line's first and last points.
+_TRENDS: list[tuple[str, str, str, str, str, bool, str]] = [
+    ("fig10a_trend_vcr_cd1", "C_d1", "V_cr as C_d1 grows", "Fig. 10a", "v", True, _Q_10A_TREND),
+    ("fig11a_trend_vcr_mu", "mu", "V_cr as mu grows", "Fig. 11a", "v", False, _Q_11A),
+    ("fig11b_trend_vcr_f11", "f11", "V_cr as f11 = f22 grows", "Fig. 11b", "v", False, _Q_11B),
+    ("fig11b_trend_f_f11", "f11", "f as f11 = f22 grows", "Fig. 11b", "f", True, _Q_11B),
+    ("fig11c_trend_vcr_kpx", "K_px", "V_cr as K_px grows", "Fig. 11c", "v", True, _Q_11C),
+    ("fig11c_trend_f_kpx", "K_px", "f as K_px grows", "Fig. 11c", "f", False, _Q_11C),
+    ("fig11d_trend_vcr_csy", "C_sy", "V_cr as C_sy grows (like K_px)", "Fig. 11d", "v", True,
+     _Q_11D),
+    ("fig11d_trend_f_csy", "C_sy", "f as C_sy grows (like K_px)", "Fig. 11d", "f", False,
+     _Q_11D),
+]  # fmt: skip
 _SWEEP_ROWS: list[tuple[str, str, str, str, float | str, str]] = [
     ("fig10a_vcr_large_cd1_kmh", "V_cr for large C_d1", "Fig. 10a", "km/h", 330.0, _Q_10A),
     ("fig10a_jump_cd1", "C_d1 of the frequency jump (300 km/h)", "Fig. 10a", "kN·s/m", 140.0,
@@ -661,11 +680,14 @@ def sweep_headline(results: Any) -> list[Headline]:
         Rows for the lines present: V_cr at the largest C_d1 and K_px (km/h), f at the
         largest K_px (Hz), the C_d1 and C_d2 of the frequency jump (kN·s/m: midpoint of the
         first neighbours whose ``frequency_source`` differs), ΔV_cr over each line
-        (largest minus smallest, km/h) and Δf over the K_px and C_sy lines with the jumps
-        left out (sum of the changes between neighbours of the same source, Hz).
+        (total variation over the Table 1 sections, km/h), Δf over the K_px and C_sy
+        lines with the jumps left out (Hz; both from
+        :func:`railhunt.studies.sections.section_changes`), and the paper's trends of
+        Figs. 10-11 judged on each line's first and last points.
     """
-    from railhunt.studies.sections import section_changes, sweep_lines
+    from railhunt.studies.sections import load_table1, section_changes, sweep_lines
 
+    table = load_table1()
     lines = sweep_lines(results)
     sections = section_changes(results)
     spec = {row[0]: row for row in _SWEEP_ROWS}
@@ -685,7 +707,7 @@ def sweep_headline(results: Any) -> list[Headline]:
         i = jumps[0]
         idx = np.flatnonzero(np.isfinite(line.frequency_hz))
         j = int(idx[np.searchsorted(idx, i) + 1])
-        return 0.5 * (line.values[i] + line.values[j]) * DISPLAY[name][0]
+        return 0.5 * (line.values[i] + line.values[j]) / table[name].scale
 
     if "C_d1" in lines:
         numeric("fig10a_vcr_large_cd1_kmh", lines["C_d1"].critical_speed_kmh[-1], 0)
@@ -695,6 +717,19 @@ def sweep_headline(results: Any) -> list[Headline]:
     if "K_px" in lines:
         numeric("fig11c_vcr_large_kpx_kmh", lines["K_px"].critical_speed_kmh[-1], 0)
         numeric("fig11c_f_large_kpx_hz", lines["K_px"].frequency_hz[-1], 2)
+    for key, name, quantity, where, column, rises, quote in _TRENDS:
+        if name not in lines:
+            continue
+        line = lines[name]
+        y = line.critical_speed_kmh if column == "v" else line.frequency_hz
+        ok = np.isfinite(y)
+        if np.count_nonzero(ok) < 2:
+            continue
+        first, last = float(y[ok][0]), float(y[ok][-1])
+        holds = last > first if rises else last < first
+        unit = "km/h" if column == "v" else "Hz"
+        rows.append(_claim(key, quantity, where, unit, "rises" if rises else "falls",
+                           f"{first:.3g} → {last:.3g}", holds, quote, _NOTE_TRENDS))  # fmt: skip
     for key, quantity, where, unit, paper, quote in _SWEEP_ROWS:
         name = key.split("_", 2)[2].rsplit("_", 1)[0]
         if not key.startswith("fig12") or name not in lines:
@@ -706,6 +741,30 @@ def sweep_headline(results: Any) -> list[Headline]:
         rows.append(_claim(key, quantity, where, unit, str(paper), value, holds, quote,
                            _NOTE_SWEEP))  # fmt: skip
     return rows
+
+
+def _sweep_shows(results: Any) -> str:
+    """One sentence per line of the study: V_cr and f at its ends, and where f jumps."""
+    from railhunt.studies.sections import load_table1, sweep_lines
+
+    table = load_table1()
+    parts = []
+    for name, line in sweep_lines(results).items():
+        entry = table[name]
+        ok = np.isfinite(line.critical_speed_kmh)
+        v = line.critical_speed_kmh[ok]
+        x = line.values / entry.scale
+        text = (f"{entry.label}: V_cr {v[0]:.0f} → {v[-1]:.0f} km/h" if v.size else
+                f"{entry.label}: no critical speed")  # fmt: skip
+        f = line.frequency_hz[np.isfinite(line.frequency_hz)]
+        if f.size:
+            text += f", f {f[0]:.2f} → {f[-1]:.2f} Hz at {line.frequency_speed_kmh:g} km/h"
+        jumps = line.jumps()
+        if jumps:
+            i = jumps[0]
+            text += f" (jump after {x[i]:.3g} {entry.unit})"
+        parts.append(text)
+    return "; ".join(parts) + "."
 
 
 def _fig10_12(ctx: _Context) -> Step:
@@ -730,7 +789,7 @@ def _fig10_12(ctx: _Context) -> Step:
                      plot_sweep(results, ctx.out_dir / "fig11.png", parameters=FIG11_LINES),
                      plot_sections(section_changes(results), ctx.out_dir / "fig12.png")]
     step.headline = sweep_headline(results)
-    step.shows = "See the headline rows of Figs. 10–12."
+    step.shows = _sweep_shows(results)
     step.how = (f"railhunt.sweep over Table 1 ({n} points per section, f22 tied to f11; "
                 "frequency after an 8 mm release at 300 km/h for the yaw-damper lines and "
                 "350 km/h otherwise), results in sweep.csv; ΔV_cr and Δf (jump removed) by "
