@@ -424,3 +424,16 @@ def test_cli_errors(two_lines, tmp_path):
     junk = tmp_path / "junk.csv"
     junk.write_text("speed,frequency\n1,2\n")
     assert_one_line_error(run("sections", str(junk)), "junk.csv", "'point'")
+
+
+def test_a_jump_across_a_boundary_is_counted_once():
+    """A frequency jump between 200 and 400 kN*s/m (across the 300 boundary of C_d1) is
+    left out of both sections' Δf but counted once, in the section of its midpoint."""
+    from railhunt.studies.sections import _variation
+
+    x = np.array([100e3, 200e3, 400e3, 500e3])
+    y = np.array([4.0, 3.8, 3.2, 3.1])
+    src = ["limit-cycle", "limit-cycle", "eigenvalue", "eigenvalue"]
+    counts = [_variation(x, y, lo, hi, src)[1] for lo, hi in ((20e3, 300e3), (300e3, 600e3))]
+    assert sum(counts) == 1
+    assert _variation(x, y, 20e3, 300e3, src)[0] == pytest.approx(0.2)

@@ -419,3 +419,14 @@ def test_frequency_source_follows_the_critical_speed():
     assert row["frequency_source"] == "limit-cycle" and 4.5 < row["hunting_frequency_hz"] < 6
     released = rh.hunting_frequency(VEHICLE.replace(K_px=10e6), 350.0, initial_amplitude=8e-3)
     assert released.source == "eigenvalue"
+
+
+def test_table1_frequency_speeds_follow_the_sweep_rule():
+    """The speeds Table 1 lists per parameter are the ones a sweep line uses by default
+    (one rule: 300 km/h for the yaw-damper parameters, 350 km/h otherwise)."""
+    from railhunt.studies.sections import load_table1
+
+    table = load_table1()
+    points = build_design(VEHICLE, {n: [getattr(VEHICLE, n)] for n in table})
+    for p in points:
+        assert frequency_speed(p, list(table), None) == table[p.line].frequency_speed_kmh

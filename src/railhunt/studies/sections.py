@@ -604,7 +604,9 @@ def _variation(
 
     ``x`` ascending and ``y`` finite. Segments whose ends differ in ``source`` are jumps
     and left out. Returns the variation, the number of jumps left out and the length of
-    ``[lower, upper]`` spanned by the points (0 when fewer than two).
+    ``[lower, upper]`` spanned by the points (0 when fewer than two). A jump segment that
+    straddles a boundary is counted in the section holding its midpoint (half-open
+    ``[lower, upper)``), so that each jump is counted once.
     """
     total, jumps = 0.0, 0
     for i in range(x.size - 1):
@@ -613,7 +615,8 @@ def _variation(
         if b <= a or right <= left:
             continue
         if source is not None and source[i] != source[i + 1]:
-            jumps += 1
+            mid = 0.5 * (a + b)
+            jumps += int(lower <= mid < upper or (mid == upper == float(x[-1])))
             continue
         part = 1.0 if (left, right) == (a, b) else (right - left) / (b - a)
         total += abs(float(y[i + 1]) - float(y[i])) * part
