@@ -289,15 +289,13 @@ def main(argv: list[str] | None = None) -> int:
         t_rq = reproduce(Path(tmp) / "quick", quick=True).seconds
         rows.append(Row("railhunt reproduce --quick (1 process)", t_rq, 60.0))
         if not args.quick:
-            try:
-                from dask.distributed import Client, LocalCluster
-            except ImportError:
-                pass
-            else:
-                with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  dashboard_address=None) as cluster, Client(cluster) as client:
-                    t_rf = reproduce(Path(tmp) / "full", client=client).seconds
-                rows.append(Row("railhunt reproduce, full (2 Dask workers)", t_rf, 300.0))
+            from distributed import Client
+
+            from railhunt.studies.execute import local_cluster
+
+            with local_cluster(2) as cluster, Client(cluster) as client:
+                t_rf = reproduce(Path(tmp) / "full", client=client).seconds
+            rows.append(Row("railhunt reproduce, full (2 Dask workers)", t_rf, 300.0))
 
     t_cold = cold_start()
     rows.append(Row("import + first call (cold process, numba cache warm)", t_cold, 5.0))
