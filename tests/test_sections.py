@@ -7,12 +7,10 @@ import math
 
 import numpy as np
 import pytest
-from click.testing import CliRunner
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import railhunt
-from railhunt.cli import main
 from railhunt.plots import plot_sections, plot_sweep
 from railhunt.studies.sections import (
     SectionTable,
@@ -22,6 +20,7 @@ from railhunt.studies.sections import (
     sweep_line,
     table1_values,
 )
+from test_cli import assert_input_error, run
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 #: Table 1 of the paper, as printed (display units).
@@ -68,23 +67,6 @@ def line_rows(name, values, speeds, freqs=None, sources=None, frequency_speed=30
             row["status"] = "no-critical-speed"
         rows.append(row)
     return rows
-
-
-def run(*args: str):
-    try:
-        runner = CliRunner(mix_stderr=False)
-    except TypeError:  # click >= 8.2 always separates them
-        runner = CliRunner()
-    return runner.invoke(main, list(args))
-
-
-def assert_one_line_error(result, *fragments: str) -> str:
-    assert result.exit_code == 2, (result.exit_code, result.stdout, result.stderr)
-    lines = [line for line in result.stderr.splitlines() if line.strip()]
-    assert len(lines) == 1 and lines[0].startswith("railhunt: error: "), result.stderr
-    for fragment in fragments:
-        assert fragment in lines[0], (fragment, lines[0])
-    return lines[0]
 
 
 def assert_png(path, min_bytes=15_000):
@@ -403,27 +385,27 @@ def test_cli_plot(two_lines, tmp_path):
 
 
 def test_cli_errors(two_lines, tmp_path):
-    assert_one_line_error(run("sections", str(tmp_path / "none.csv")), "none.csv",
+    assert_input_error(run("sections", str(tmp_path / "none.csv")), "none.csv",
                           "does not exist")  # fmt: skip
-    assert_one_line_error(run("plot", str(two_lines), "--out", str(tmp_path / "f.png"),
+    assert_input_error(run("plot", str(two_lines), "--out", str(tmp_path / "f.png"),
                               "--parameter", "mu"),
                           "--parameter mu", "lines: C_d1, K_d")  # fmt: skip
-    assert_one_line_error(run("plot", str(two_lines), "--out", str(tmp_path / "no" / "f.png")),
+    assert_input_error(run("plot", str(two_lines), "--out", str(tmp_path / "no" / "f.png")),
                           "folder")  # fmt: skip
-    assert_one_line_error(run("plot", str(two_lines)), "--out")
+    assert_input_error(run("plot", str(two_lines)), "--out")
     rows = line_rows("C_d1", [20e3, 300e3], [220, 300])
     for row in rows:
         row["line"] = "random"
     grid = write_results(tmp_path / "random.csv", rows, ["C_d1"])
     for command in (["sections"], ["plot", "--out", str(tmp_path / "g.png")]):
-        assert_one_line_error(run(*command, str(grid)), "random.csv", "'random' design",
+        assert_input_error(run(*command, str(grid)), "random.csv", "'random' design",
                               "design 'lines'")  # fmt: skip
     other = write_results(tmp_path / "fu.csv", line_rows("F_u", [2e3, 4e3], [290, 310]), ["F_u"])
-    assert_one_line_error(run("sections", str(other)), "fu.csv", "lines: F_u",
+    assert_input_error(run("sections", str(other)), "fu.csv", "lines: F_u",
                           "Table 1: C_d1, K_d")  # fmt: skip
     junk = tmp_path / "junk.csv"
     junk.write_text("speed,frequency\n1,2\n")
-    assert_one_line_error(run("sections", str(junk)), "junk.csv", "'point'")
+    assert_input_error(run("sections", str(junk)), "junk.csv", "'point'")
 
 
 def test_a_jump_across_a_boundary_is_counted_once():

@@ -348,24 +348,11 @@ def plot_damper_velocity(
     title: str = "",
 ) -> Path:
     """Time histories like the paper's Fig. 8: leading wheelset displacement (mm) and the
-    front yaw damper's velocity (m/s) against the blow-off velocity (red lines)."""
-    fig = _new_figure(7.0, 5.0)
-    ax1 = fig.add_subplot(2, 1, 1)
-    ax1.plot(t, np.asarray(y) * 1e3, lw=0.8)
-    ax1.set_ylabel("y_w1 (mm)")
-    ax1.grid(True, alpha=0.3)
-    if title:
-        ax1.set_title(title)
-    ax2 = fig.add_subplot(2, 1, 2, sharex=ax1)
-    ax2.plot(t, np.asarray(damper_velocity)[:, 0], lw=0.8, label="front left yaw damper v_d")
-    for sign in (1, -1):
-        ax2.axhline(sign * blowoff_velocity, color="r", lw=1,
-                    label="blow-off velocity v_u" if sign > 0 else None)  # fmt: skip
-    ax2.set_xlabel("time (s)")
-    ax2.set_ylabel("damper velocity (m/s)")
-    ax2.grid(True, alpha=0.3)
-    ax2.legend(fontsize=8, loc="upper right")
-    return _save(fig, path)
+    front yaw damper's velocity (m/s) against the blow-off velocity (red lines).
+
+    One case of :func:`plot_damper_histories`.
+    """
+    return plot_damper_histories([(title, t, y, damper_velocity, blowoff_velocity)], path)
 
 
 def plot_bifurcation_family(
