@@ -430,3 +430,32 @@ def test_table1_frequency_speeds_follow_the_sweep_rule():
     points = build_design(VEHICLE, {n: [getattr(VEHICLE, n)] for n in table})
     for p in points:
         assert frequency_speed(p, list(table), None) == table[p.line].frequency_speed_kmh
+
+
+def test_ctrl_c_on_a_local_cluster_is_one_clean_message(tmp_path, mu_reference):
+    """A terminal's Ctrl-C reaches the whole process group, Dask workers included: the
+    command says once how to resume (no worker tracebacks), exits 130, and --resume then
+    completes the study with the numbers of an uninterrupted run."""
+    out = tmp_path / "c.csv"
+    args = ["sweep", "mu", "--from", "0.1", "--to", "0.5", "--num", "20", "--outputs",
+            "critical_speed", "--out", str(out)]  # fmt: skip
+    proc = subprocess.Popen(_cli(*args, "--workers", "2"), stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, start_new_session=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline:
+        if out.exists() and len(out.read_text().splitlines()) >= 3:
+            break
+        time.sleep(0.05)
+    os.killpg(proc.pid, signal.SIGINT)  # what a terminal does
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == 130
+    text = err.decode()
+    ours = [line for line in text.splitlines() if line.startswith("railhunt:")]
+    assert len(ours) == 1 and "--resume" in ours[0], text
+    assert "Traceback" not in text and "KeyboardInterrupt" not in text, text
+    assert 2 <= len(read_results(out)) < 20
+    finished = subprocess.run(_cli(*args, "--workers", "1", "--resume"), capture_output=True,
+                              timeout=300)  # fmt: skip
+    assert finished.returncode == 0, finished.stderr
+    assert read_results(out).rows == mu_reference.rows

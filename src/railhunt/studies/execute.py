@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import logging
 import os
+import signal
 import warnings
 from collections.abc import Callable, Sequence
 from typing import Any
@@ -146,6 +147,10 @@ def run_tasks(
                 cluster = local_cluster(n)
                 own.append(cluster)
                 client = Client(cluster)
+                # A terminal's Ctrl-C reaches every process of the group: let this process
+                # alone handle it (cancel, close, keep the file), not each worker with a
+                # traceback of its own.
+                client.run(_ignore_sigint)
             own.insert(0, client)
         futures = client.map(task, list(items), pure=False)
         index = {f.key: item for f, item in zip(futures, items, strict=True)}
@@ -167,6 +172,11 @@ def run_tasks(
     finally:
         for obj in own:
             _close_quietly(obj)
+
+
+def _ignore_sigint() -> None:
+    """Run in each local worker process (on its main thread): ignore SIGINT."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 def _close_quietly(obj: Any) -> None:
