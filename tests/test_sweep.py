@@ -345,14 +345,16 @@ def test_lost_worker_is_recovered(dask_client, tmp_path):
     point is in the file exactly once and equals the serial result."""
     values = {"mu": np.linspace(0.1, 0.5, 8)}
     outputs = ("critical_speed",)
-    pids = list(dask_client.run(os.getpid).values())
+    pids = dask_client.run(os.getpid)  # worker address -> process id
     killed = []
 
     def kill_once(done, total):
-        if not killed:
-            os.kill(pids[0], signal.SIGKILL)
-            killed.append(pids[0])
-
+        if killed:
+            return
+        busy = [addr for addr, keys in dask_client.processing().items() if keys]
+        if busy:  # a worker with a task in hand: its task must be rerun elsewhere
+            os.kill(pids[busy[0]], signal.SIGKILL)
+            killed.append(busy[0])
     out = tmp_path / "lost.csv"
     res = sweep(VEHICLE, values, outputs, client=dask_client, out=out, progress=kill_once)
     assert killed
