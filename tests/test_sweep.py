@@ -461,3 +461,21 @@ def test_ctrl_c_on_a_local_cluster_is_one_clean_message(tmp_path, mu_reference):
                               timeout=300)  # fmt: skip
     assert finished.returncode == 0, finished.stderr
     assert read_results(out).rows == mu_reference.rows
+
+
+def test_a_task_that_keeps_killing_its_worker_is_lost_not_written(dask_client):
+    """Dask reruns the tasks of a dead worker; a task that kills every worker it runs on is
+    given up (KilledWorker) and reported as lost, while the other items finish."""
+    from railhunt.studies.execute import run_tasks
+
+    def task(item):  # a closure: shipped to the workers by value
+        if item == 1:
+            os._exit(1)
+        return {"point": item}
+
+    done = []
+    lost = run_tasks(task, [0, 1, 2], done.append, client=dask_client)
+    assert sorted(r["point"] for r in done) == [0, 2]
+    assert [item for item, _ in lost] == [1]
+    assert "KilledWorker" in lost[0][1]
+    dask_client.wait_for_workers(2, timeout=60)
