@@ -629,9 +629,9 @@ _Q_11B = ("Figure 11(b) shows the results of f_11 (f_22), and it can be seen tha
           "increasing of f_11 (f_22), V_cr decreases gradually, f increases overall")  # fmt: skip
 _Q_11D = ("As for C_sy, the influences on both V_cr and f are coincident with the results of "
           "K_px in the trend")  # fmt: skip
-_NOTE_TRENDS = ("railhunt's V_cr of the nominal vehicle is 20 km/h below the paper's; why the "
-                "K_px and C_sy trends differ is not established (docs/studies.md, 'The paper's "
-                "study, measured').")  # fmt: skip
+_NOTE_TRENDS = ("railhunt's Hopf speed peaks near K_px = 12 MN/m (the kinematic/bogie trade-"
+                "off), so Table 1's 10-80 MN/m lies on its falling side; the C_sy trend is not "
+                "traced (docs/studies.md, 'The paper's study, measured').")  # fmt: skip
 #: Trends of the paper's Figs. 10-11: (key, line, quantity, where, "v" (V_cr) or "f",
 #: rises?, quote). Judged on the line's first and last points.
 _TRENDS: list[tuple[str, str, str, str, str, bool, str]] = [
