@@ -630,8 +630,8 @@ _Q_11B = ("Figure 11(b) shows the results of f_11 (f_22), and it can be seen tha
 _Q_11D = ("As for C_sy, the influences on both V_cr and f are coincident with the results of "
           "K_px in the trend")  # fmt: skip
 _NOTE_TRENDS = ("railhunt's Hopf speed peaks near K_px = 12 MN/m (the kinematic/bogie trade-"
-                "off), so Table 1's 10-80 MN/m lies on its falling side; the C_sy trend is not "
-                "traced (docs/studies.md, 'The paper's study, measured').")  # fmt: skip
+                "off) and near C_sy = 27 kN·s/m, so much of Table 1's ranges lies on the "
+                "falling sides (docs/studies.md, 'The paper's study, measured').")  # fmt: skip
 #: Trends of the paper's Figs. 10-11: (key, line, quantity, where, "v" (V_cr) or "f",
 #: rises?, quote). Judged on the line's first and last points.
 _TRENDS: list[tuple[str, str, str, str, str, bool, str]] = [
