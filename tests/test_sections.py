@@ -419,3 +419,20 @@ def test_a_jump_across_a_boundary_is_counted_once():
     counts = [_variation(x, y, lo, hi, src)[1] for lo, hi in ((20e3, 300e3), (300e3, 600e3))]
     assert sum(counts) == 1
     assert _variation(x, y, 20e3, 300e3, src)[0] == pytest.approx(0.2)
+
+
+def test_plot_needs_a_critical_speed_or_a_frequency(tmp_path):
+    """A study of the Hopf point alone has nothing for Figs. 10/11: a clear error, no
+    traceback; one with the critical speed only draws V_cr alone."""
+    from railhunt import Vehicle, sweep
+
+    v = Vehicle.paper2019()
+    linear = sweep(v, {"K_px": [2e7, 4e7]}, ("linear_critical_speed",), workers=1,
+                   out=tmp_path / "lin.csv")  # fmt: skip
+    assert len(linear) == 2
+    assert_input_error(run("plot", str(tmp_path / "lin.csv"), "--out", str(tmp_path / "a.png")),
+                       "neither critical_speed nor hunting_frequency")  # fmt: skip
+    sweep(v, {"K_px": [2e7, 4e7]}, ("critical_speed",), workers=1, out=tmp_path / "cs.csv")
+    result = run("plot", str(tmp_path / "cs.csv"), "--out", str(tmp_path / "b.png"))
+    assert result.exit_code == 0, result.stderr
+    assert_png(tmp_path / "b.png", min_bytes=5_000)

@@ -581,8 +581,9 @@ def plot_sweep(
     ------
     ValueError
         The results hold a grid / random / Latin-hypercube design (several parameters
-        varied at once: one parameter's curve would mix the others' changes), or a
-        requested parameter is not one of the lines.
+        varied at once: one parameter's curve would mix the others' changes), a
+        requested parameter is not one of the lines, or the results have neither the
+        critical speed nor the hunting frequency.
     """
     from railhunt.studies.sections import sweep_lines
 
@@ -593,6 +594,10 @@ def plot_sweep(
     for name in names:
         if name not in lines:
             raise ValueError(f"no line {name!r} in the results (lines: {', '.join(lines)})")
+    columns = next(iter(lines.values())).columns
+    if not {"critical_speed_kmh", "hunting_frequency_hz"} & columns:
+        raise ValueError("the results hold neither critical_speed nor hunting_frequency (the "
+                         "sweep's outputs): nothing to draw for Figs. 10/11")  # fmt: skip
     n = len(names)
     cols = n if n <= 3 else (2 if n == 4 else 3)
     rows = int(math.ceil(n / cols))
@@ -624,7 +629,7 @@ def _sweep_panel(ax: Axes, line: SweepLine, letter: str) -> None:
     jumps = set(line.jumps())
     finite = np.flatnonzero(np.isfinite(f))
     run: list[int] = []
-    for i, j in zip(finite, [*finite[1:], -1], strict=True):
+    for i, j in zip(finite, [*finite[1:], -1], strict=False):
         run.append(int(i))
         if j < 0 or int(i) in jumps:
             ax_f.plot(x[run], f[run], "-s", color=blue, lw=1.4, ms=3)

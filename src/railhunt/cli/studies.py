@@ -175,5 +175,7 @@ def plot(results: Path, out_file: Path, parameters: tuple[str, ...]) -> None:
         plot_sweep(results, out_file, list(parameters) or None)
     except OSError as exc:
         raise CliError(f"cannot write --out {out_file}: {exc.strerror or exc}") from None
+    except ValueError as exc:
+        raise CliError(f"{results}: {exc}") from None
     drawn = ", ".join(parameters or lines)
     _stdout_console().print(f"wrote {out_file} ({drawn})")
