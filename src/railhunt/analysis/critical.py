@@ -142,6 +142,71 @@ def judge(
     return None, amplitude, rate
 
 
+def run_until_verdict(
+    model: Model,
+    speed_kmh: float,
+    judgement: Judgement,
+    excitation: object = None,
+    x0: np.ndarray | None = None,
+    method: str = "rk4",
+    dt: float = 1e-3,
+    output_dt: float = 2e-3,
+) -> tuple[str, np.ndarray, np.ndarray, int, float, float, bool]:
+    """Simulate one speed, chunk by chunk, until the verdict on ``y_w1`` is clear.
+
+    Parameters
+    ----------
+    model : Model
+        The assembled model.
+    speed_kmh : float
+        Speed (km/h).
+    judgement : Judgement
+        Thresholds and chunk lengths.
+    excitation : SingleDefect, optional
+        Track input; the verdict is taken on the record after the last wheelset has left it.
+    x0 : numpy.ndarray, optional
+        Initial state (default: the centred equilibrium).
+    method : {"rk4", "dopri5"}
+        Integrator.
+    dt, output_dt : float
+        RK4 step and output interval (s).
+
+    Returns
+    -------
+    verdict : {"stable", "hunting"}
+        ``"hunting"`` also when the run left the track or diverged (``code != 0``).
+    t, x : numpy.ndarray
+        The whole record: times (s) and states.
+    code : int
+        Integrator status (0 ok, 1 derailed, 2 diverged, 3 step failed).
+    amplitude, growth_rate : float
+        Final envelope of ``y_w1`` (m) and its log slope (1/s), as :func:`judge` gives them.
+    decided : bool
+        False when ``max_duration`` ran out and the envelope's trend decided.
+    """
+    speed = speed_kmh / 3.6
+    t_exc = excitation_end_time(model, excitation, speed)
+    t0, x_start = 0.0, np.zeros(N_STATE) if x0 is None else np.asarray(x0, dtype=float)
+    duration = t_exc + judgement.chunk
+    ts: list[np.ndarray] = []
+    xs: list[np.ndarray] = []
+    while True:
+        t, x, code, _ = integrate_model(
+            model, speed, duration, x_start, t0=t0, excitation=excitation, method=method,
+            dt=dt, output_dt=output_dt, y_limit=Y_LIMIT,
+        )  # fmt: skip
+        ts.append(t if not ts else t[1:])
+        xs.append(x if not xs else x[1:])
+        tt, xx = np.concatenate(ts), np.concatenate(xs)
+        if code != 0:
+            return HUNTING, tt, xx, code, float(np.max(np.abs(xx[-50:, Y_W1]))), math.nan, True
+        final = tt[-1] - t_exc >= judgement.max_duration - 1e-9
+        verdict, amp, rate = judge(tt, xx[:, Y_W1], t_exc, judgement, final=final)
+        if verdict is not None:
+            return verdict, tt, xx, code, amp, rate, not final
+        t0, x_start, duration = float(t[-1]), x[-1].copy(), judgement.chunk
+
+
 def run_trial(
     model: Model,
     speed_kmh: float,
@@ -151,33 +216,12 @@ def run_trial(
     dt: float = 1e-3,
     output_dt: float = 2e-3,
 ) -> Trial:
-    """Simulate one speed, chunk by chunk, until the verdict is clear."""
-    speed = speed_kmh / 3.6
-    t_exc = excitation_end_time(model, excitation, speed)
-    t_end = t_exc + judgement.chunk
-    x0 = np.zeros(N_STATE)
-    t, x, code, _ = integrate_model(
-        model, speed, t_end, x0, excitation=excitation, method=method, dt=dt,
-        output_dt=output_dt, y_limit=Y_LIMIT,
-    )  # fmt: skip
-    ts, ys = [t], [x[:, Y_W1]]
-    while True:
-        tt = np.concatenate(ts)
-        yy = np.concatenate(ys)
-        if code != 0:
-            status = {1: "derailed", 2: "diverged", 3: "step-failed"}[code]
-            return Trial(speed_kmh, HUNTING, float(np.max(np.abs(yy[-50:]))), math.nan,
-                         float(tt[-1]), True, status)  # fmt: skip
-        final = tt[-1] - t_exc >= judgement.max_duration - 1e-9
-        verdict, amp, rate = judge(tt, yy, t_exc, judgement, final=final)
-        if verdict is not None:
-            return Trial(speed_kmh, verdict, amp, rate, float(tt[-1]), not final, "ok")
-        t, x, code, _ = integrate_model(
-            model, speed, judgement.chunk, x[-1].copy(), t0=float(t[-1]), excitation=excitation,
-            method=method, dt=dt, output_dt=output_dt, y_limit=Y_LIMIT,
-        )  # fmt: skip
-        ts.append(t[1:])
-        ys.append(x[1:, Y_W1])
+    """Simulate one speed over ``excitation`` until the verdict is clear (one bisection step)."""
+    verdict, t, _, code, amp, rate, decided = run_until_verdict(
+        model, speed_kmh, judgement, excitation, method=method, dt=dt, output_dt=output_dt
+    )
+    status = {0: "ok", 1: "derailed", 2: "diverged", 3: "step-failed"}[code]
+    return Trial(speed_kmh, verdict, amp, rate, float(t[-1]), decided, status)
 
 
 def critical_speed(

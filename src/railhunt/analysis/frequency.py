@@ -18,11 +18,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from railhunt.analysis.critical import HUNTING, STABLE, Judgement, judge
+from railhunt.analysis.critical import HUNTING, STABLE, Judgement, run_until_verdict
 from railhunt.analysis.linear import eigen_analysis
 from railhunt.analysis.periodic import periodic_orbit, phase_origin
 from railhunt.model import N_STATE, WHEELSET_Y, Y_W1, Model
-from railhunt.simulation import Y_LIMIT, auto_step, excitation_end_time, integrate_model
+from railhunt.simulation import auto_step
 from railhunt.vehicle import Vehicle
 
 
@@ -127,32 +127,6 @@ class HuntingFrequency:
         return out
 
 
-def _record(model: Model, speed: float, judgement: Judgement, dt: float, output_dt: float,
-            amplitude: float, excitation: object = None):  # fmt: skip
-    """Simulate until the verdict is clear: from every wheelset displaced by ``amplitude``,
-    or from the centre over ``excitation`` (judged once the last wheelset has left it)."""
-    x0 = np.zeros(N_STATE)
-    if excitation is None:
-        x0[WHEELSET_Y] = amplitude
-    t_start = excitation_end_time(model, excitation, speed)
-    ts, xs = [], []
-    t0, x_start, code, duration = 0.0, x0, 0, t_start + judgement.chunk
-    while True:
-        t, x, code, _ = integrate_model(model, speed, duration, x_start, t0=t0, dt=dt,
-                                        excitation=excitation, output_dt=output_dt,
-                                        y_limit=Y_LIMIT)  # fmt: skip
-        ts.append(t if not ts else t[1:])
-        xs.append(x if not xs else x[1:])
-        tt = np.concatenate(ts)
-        if code != 0:
-            return HUNTING, tt, np.concatenate(xs), code
-        final = tt[-1] - t_start >= judgement.max_duration - 1e-9
-        verdict, _, _ = judge(tt, np.concatenate(xs)[:, Y_W1], t_start, judgement, final=final)
-        if verdict is not None:
-            return verdict, tt, np.concatenate(xs), code
-        t0, x_start, duration = float(t[-1]), x[-1].copy(), judgement.chunk
-
-
 def hunting_frequency(
     vehicle: Vehicle,
     speed_kmh: float,
@@ -225,8 +199,11 @@ def hunting_frequency(
     f_eig = float(eig.hunting_frequency_hz[0])
     zeta = float(eig.hunting_damping_ratio[0])
     dt = auto_step(model, speed)
-    verdict, t, x, code = _record(model, speed, judgement, dt, 2e-3, initial_amplitude,
-                                  excitation)  # fmt: skip
+    x0 = np.zeros(N_STATE)
+    if excitation is None:
+        x0[WHEELSET_Y] = initial_amplitude
+    verdict, t, x, code, _, _, _ = run_until_verdict(model, speed_kmh, judgement, excitation,
+                                                     x0, dt=dt)  # fmt: skip
     y = x[:, Y_W1]
     vd = model.damper_velocities(x[:, 34:38]) if x.size else np.empty((0, 4))
     v_u = vehicle.F_u / vehicle.C_d1
