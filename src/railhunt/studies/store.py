@@ -141,11 +141,11 @@ class SweepResults:
         The study description of ``<file>.sweep.json`` (empty if there is none).
     path : Path, optional
         The results file.
-    computed, resumed, lost : int
-        Points computed by this run, found done in the file, and lost (a worker died or
-        the run was interrupted; run again with ``resume=True``).
+    computed, resumed : int
+        Points computed by this run, and found done in the file.
     lost_reasons : list of str
-        Why each lost point was lost.
+        Why each lost point was lost (its task could not finish; run again with
+        ``resume=True``).
     elapsed_s : float
         Wall time of the run (s).
     """
@@ -155,9 +155,13 @@ class SweepResults:
     path: Path | None = None
     computed: int = 0
     resumed: int = 0
-    lost: int = 0
     lost_reasons: list[str] = field(default_factory=list)
     elapsed_s: float = 0.0
+
+    @property
+    def lost(self) -> int:
+        """Points lost by this run (see ``lost_reasons``)."""
+        return len(self.lost_reasons)
 
     @property
     def columns(self) -> list[str]:

@@ -140,10 +140,11 @@ def _interrupted(exc: BaseException) -> bool:
     return False
 
 
-def _task(point: Point, vehicle: Vehicle, outputs: tuple[str, ...], speeds: dict[int, float],
+def _task(item: tuple[Point, float], vehicle: Vehicle, outputs: tuple[str, ...],
           excitation: object, creep_law: str,
           amplitude: float | None) -> dict[str, Any]:  # fmt: skip
-    return evaluate_point(point, vehicle, outputs, speeds[point.index], excitation, creep_law,
+    point, frequency_speed_kmh = item
+    return evaluate_point(point, vehicle, outputs, frequency_speed_kmh, excitation, creep_law,
                           amplitude)  # fmt: skip
 
 
@@ -266,8 +267,9 @@ def sweep(
     store = ResultStore(out, meta, resume=resume, overwrite=overwrite) if out else None
     rows: dict[int, dict[str, Any]] = dict(store.rows) if store else {}
     resumed = len(rows)
-    todo = [p for p in points if p.index not in rows]
-    task = functools.partial(_task, vehicle=vehicle, outputs=outputs, speeds=speeds,
+    # Each task carries its own point and frequency speed (not the whole study's).
+    todo = [(p, speeds[p.index]) for p in points if p.index not in rows]
+    task = functools.partial(_task, vehicle=vehicle, outputs=outputs,
                              excitation=excitation, creep_law=creep_law,
                              amplitude=frequency_amplitude)  # fmt: skip
     bar = progress_bar() if progress is True else None
@@ -299,7 +301,6 @@ def sweep(
     result = SweepResults([rows[k] for k in sorted(rows)], meta, Path(out) if out else None)
     result.computed = len(rows) - resumed
     result.resumed = resumed
-    result.lost = len(lost)
     result.lost_reasons = [reason for _, reason in lost]
     result.elapsed_s = time.perf_counter() - start
     return result
