@@ -41,6 +41,8 @@ from typing import Any
 
 import numpy as np
 
+from railhunt.studies.design import DESIGNS
+
 __all__ = [
     "MULTI_PARAMETER_DESIGNS",
     "ParameterSections",
@@ -57,7 +59,7 @@ __all__ = [
 ]
 
 #: Values of the ``line`` column of designs that are not one-parameter lines.
-MULTI_PARAMETER_DESIGNS = ("grid", "random", "lhs")
+MULTI_PARAMETER_DESIGNS = tuple(d for d in DESIGNS if d != "lines")
 #: Results columns read here (see the results-file schema of :func:`railhunt.sweep`).
 SPEED_COLUMN = "critical_speed_kmh"
 FREQUENCY_COLUMN = "hunting_frequency_hz"
