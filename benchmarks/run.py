@@ -161,14 +161,13 @@ def cold_start() -> float:
 def sweep_rate(vehicle: railhunt.Vehicle, workers: int, repeat: int) -> tuple[float, int]:
     """Median seconds and points of a 24-point study (C_d1 and K_px lines, every output) on
     a local Dask cluster of ``workers`` processes, every worker's numba code loaded first."""
-    from distributed import Client
 
-    from railhunt.studies.execute import local_cluster
+    from railhunt.studies.execute import local_client
     from railhunt.studies.sweep import warm_up
 
     warm_up()
     study = {"C_d1": np.linspace(50e3, 600e3, 12), "K_px": np.linspace(10e6, 80e6, 12)}
-    with local_cluster(workers) as cluster, Client(cluster) as client:
+    with local_client(workers) as client:
         client.run(warm_up)  # each worker loads the compiled code from numba's cache
         seconds, result = median_time(lambda: railhunt.sweep(vehicle, study, client=client),
                                       max(repeat, 2))  # fmt: skip
@@ -289,11 +288,9 @@ def main(argv: list[str] | None = None) -> int:
         t_rq = reproduce(Path(tmp) / "quick", quick=True).seconds
         rows.append(Row("railhunt reproduce --quick (1 process)", t_rq, 60.0))
         if not args.quick:
-            from distributed import Client
+            from railhunt.studies.execute import local_client
 
-            from railhunt.studies.execute import local_cluster
-
-            with local_cluster(2) as cluster, Client(cluster) as client:
+            with local_client(2) as client:
                 t_rf = reproduce(Path(tmp) / "full", client=client).seconds
             rows.append(Row("railhunt reproduce, full (2 Dask workers)", t_rf, 300.0))
 

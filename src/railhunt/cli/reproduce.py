@@ -31,9 +31,9 @@ def _dask_client(scheduler: str | None, workers: int | None) -> Iterator[Any]:
         with client:
             yield client
         return
-    from railhunt.studies.execute import check_workers, local_cluster
+    from railhunt.studies.execute import check_workers, local_client
 
-    with local_cluster(check_workers(workers)) as cluster, Client(cluster) as client:
+    with local_client(check_workers(workers)) as client:
         yield client
 
 

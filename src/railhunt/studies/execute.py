@@ -16,7 +16,8 @@ import logging
 import os
 import signal
 import warnings
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import ExitStack, contextmanager
 from typing import Any
 
 from rich.console import Console
@@ -81,14 +82,59 @@ def local_cluster(workers: int) -> Any:
     """A ``dask.distributed.LocalCluster`` of ``workers`` single-threaded processes.
 
     Without a dashboard; its HTTP server takes any free port (no warning when 8787, the
-    default, is taken by another cluster).
+    default, is taken by another cluster). Two settings suit studies of many long points:
+
+    - a worker holds only the task it is running (``worker-saturation`` 1.0, Dask's
+      default 1.1 sends a second one to queue behind it): a worker that dies takes only
+      its own point with it, and a free worker never waits behind a slow point;
+    - every worker process, and each one the nanny restarts, ignores SIGINT (see
+      :func:`dask_setup`);
+    - Dask's own log messages below CRITICAL are silenced: railhunt reports what a study
+      lost and why itself, and when a study is interrupted the workers would otherwise
+      print tracebacks about the results they could no longer send.
     """
+    import dask
     from distributed import LocalCluster
 
-    with warnings.catch_warnings():
+    with warnings.catch_warnings(), \
+            dask.config.set({"distributed.scheduler.worker-saturation": 1.0}):  # fmt: skip
         warnings.filterwarnings("ignore", message="Port .* is already in use")
         return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                            dashboard_address=None, silence_logs=logging.ERROR)  # fmt: skip
+                            dashboard_address=None, silence_logs=logging.CRITICAL,
+                            preload=[__name__])  # fmt: skip
+
+
+def dask_setup(worker: Any) -> None:
+    """Dask preload hook, run in each local worker process as it starts: ignore SIGINT.
+
+    A terminal's Ctrl-C reaches every process of the group; the process that runs the
+    study handles it (cancels, closes the cluster, keeps the file), the workers do not each
+    print a traceback of their own.
+    """
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+@contextmanager
+def local_client(workers: int) -> Iterator[Any]:
+    """A ``dask.distributed.Client`` on a new :func:`local_cluster`, closed on exit.
+
+    Closing does not raise: after workers died and were restarted, Dask's cluster can fail
+    its own bookkeeping while it closes (a ``KeyError`` on a worker address it never saw
+    arrive), once its processes are already gone; the study's results are not affected.
+    """
+    from distributed import Client
+
+    cluster = local_cluster(workers)
+    try:
+        client = Client(cluster)
+    except BaseException:
+        _close_quietly(cluster)
+        raise
+    try:
+        yield client
+    finally:
+        _close_quietly(client)
+        _close_quietly(cluster)
 
 
 def run_tasks(
@@ -138,45 +184,30 @@ def run_tasks(
         return []
     from distributed import Client, as_completed
 
-    own: list[Any] = []
-    try:
-        if client is None:
-            if scheduler is not None:
-                client = Client(scheduler, timeout="30s")
-            else:
-                cluster = local_cluster(n)
-                own.append(cluster)
-                client = Client(cluster)
-                # A terminal's Ctrl-C reaches every process of the group: let this process
-                # alone handle it (cancel, close, keep the file), not each worker with a
-                # traceback of its own.
-                client.run(_ignore_sigint)
-            own.insert(0, client)
+    with ExitStack() as stack:
+        if client is None and scheduler is not None:
+            client = Client(scheduler, timeout="30s")
+            stack.callback(_close_quietly, client)
+        elif client is None:
+            client = stack.enter_context(local_client(n))
         futures = client.map(task, list(items), pure=False)
         index = {f.key: item for f, item in zip(futures, items, strict=True)}
         lost: list[tuple[Any, str]] = []
         try:
             for future in as_completed(futures):
-                if future.status == "finished":
-                    on_result(future.result())
+                try:
+                    # A task that finished on a worker that died before its result was
+                    # fetched is computed again: result() waits for that, it is not lost.
+                    row = future.result()
+                except Exception as exc:  # noqa: BLE001 - KilledWorker, cancelled, ...
+                    lost.append((index[future.key], f"{type(exc).__name__}: {exc}"))
                 else:
-                    exc = future.exception() if future.status == "error" else None
-                    reason = (f"{type(exc).__name__}: {exc}" if exc is not None
-                              else f"task {future.status}")  # fmt: skip
-                    lost.append((index[future.key], reason))
+                    on_result(row)
                 future.release()
         except BaseException:
             client.cancel(futures)
             raise
         return lost
-    finally:
-        for obj in own:
-            _close_quietly(obj)
-
-
-def _ignore_sigint() -> None:
-    """Run in each local worker process (on its main thread): ignore SIGINT."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 def _close_quietly(obj: Any) -> None:
