@@ -21,19 +21,16 @@ def _dask_client(scheduler: str | None, workers: int | None) -> Iterator[Any]:
     if scheduler is None and workers == 1:
         yield None
         return
-    from distributed import Client
+    from railhunt.studies.execute import check_workers, open_client
 
-    if scheduler is not None:
+    with contextlib.ExitStack() as stack:
         try:
-            client = Client(scheduler, timeout="10s")
+            client = stack.enter_context(open_client(scheduler, check_workers(workers),
+                                                     timeout="10s"))  # fmt: skip
         except OSError as exc:
+            if scheduler is None:  # a local cluster that fails to start: not an input error
+                raise
             raise CliError(f"--scheduler {scheduler}: cannot connect ({exc})") from None
-        with client:
-            yield client
-        return
-    from railhunt.studies.execute import check_workers, local_client
-
-    with local_client(check_workers(workers)) as client:
         yield client
 
 

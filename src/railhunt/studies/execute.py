@@ -82,7 +82,7 @@ def local_cluster(workers: int) -> Any:
     """A ``dask.distributed.LocalCluster`` of ``workers`` single-threaded processes.
 
     Without a dashboard; its HTTP server takes any free port (no warning when 8787, the
-    default, is taken by another cluster). Two settings suit studies of many long points:
+    default, is taken by another cluster). Three settings suit studies of many long points:
 
     - a worker holds only the task it is running (``worker-saturation`` 1.0, Dask's
       default 1.1 sends a second one to queue behind it): a worker that dies takes only
@@ -137,6 +137,33 @@ def local_client(workers: int) -> Iterator[Any]:
         _close_quietly(cluster)
 
 
+@contextmanager
+def open_client(scheduler: str | None, workers: int, timeout: str = "30s") -> Iterator[Any]:
+    """A ``dask.distributed.Client``, closed on exit: joined to ``scheduler``, or else on a
+    new :func:`local_client` of ``workers`` processes.
+
+    Parameters
+    ----------
+    scheduler : str, optional
+        Address of a Dask scheduler to join (``tcp://host:8786``).
+    workers : int
+        Worker processes of the local cluster (used without ``scheduler``).
+    timeout : str
+        How long to try to reach ``scheduler`` before ``OSError`` (Dask's duration text).
+    """
+    if scheduler is None:
+        with local_client(workers) as client:
+            yield client
+        return
+    from distributed import Client
+
+    client = Client(scheduler, timeout=timeout)
+    try:
+        yield client
+    finally:
+        _close_quietly(client)
+
+
 def run_tasks(
     task: Callable[[Any], dict[str, Any]],
     items: Sequence[Any],
@@ -182,14 +209,11 @@ def run_tasks(
         for item in items:
             on_result(task(item))
         return []
-    from distributed import Client, as_completed
+    from distributed import as_completed
 
     with ExitStack() as stack:
-        if client is None and scheduler is not None:
-            client = Client(scheduler, timeout="30s")
-            stack.callback(_close_quietly, client)
-        elif client is None:
-            client = stack.enter_context(local_client(n))
+        if client is None:
+            client = stack.enter_context(open_client(scheduler, n))
         futures = client.map(task, list(items), pure=False)
         index = {f.key: item for f, item in zip(futures, items, strict=True)}
         lost: list[tuple[Any, str]] = []
