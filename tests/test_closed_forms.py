@@ -125,8 +125,14 @@ def model() -> Model:
     return Model(V)
 
 
-def _close(actual: float, expected: float, rel: float = 1e-12) -> bool:
-    return actual == pytest.approx(expected, rel=rel, abs=1e-9)
+def entry(m: np.ndarray, a: str, b: str) -> float:
+    """Entry (a, b) of a 17 x 17 matrix by coordinate names."""
+    return float(m[I[a], I[b]])
+
+
+def exactly(expected: float) -> object:
+    """Equal to rounding (the matrices are sums of a few products)."""
+    return pytest.approx(expected, rel=1e-12, abs=1e-9)
 
 
 # ------------------------------------------------------------------- named entries of K
@@ -135,17 +141,17 @@ def _close(actual: float, expected: float, rel: float = 1e-12) -> bool:
 def test_wheelset_yaw_diagonal_is_primary_yaw_stiffness(model):
     """2 K_px b1^2 on each wheelset's yaw (two longitudinal springs at +-b1)."""
     for j in range(1, 5):
-        assert _close(model.K[I[f"psi_w{j}"], I[f"psi_w{j}"]], 2 * V.K_px * V.b1**2)
-        assert _close(model.C[I[f"psi_w{j}"], I[f"psi_w{j}"]], 2 * V.C_px * V.b1**2)
-        assert _close(model.K[I[f"y_w{j}"], I[f"y_w{j}"]], 2 * V.K_py)
+        assert entry(model.K, f"psi_w{j}", f"psi_w{j}") == exactly(2 * V.K_px * V.b1**2)
+        assert entry(model.C, f"psi_w{j}", f"psi_w{j}") == exactly(2 * V.C_px * V.b1**2)
+        assert entry(model.K, f"y_w{j}", f"y_w{j}") == exactly(2 * V.K_py)
 
 
 def test_car_lateral_diagonal_counts_four_air_springs(model):
     """4 K_sy and 4 C_sy on y_c: two bogies x two air springs / lateral dampers."""
-    assert _close(model.K[I["y_c"], I["y_c"]], 4 * V.K_sy)
-    assert _close(model.C[I["y_c"], I["y_c"]], 4 * V.C_sy)
-    assert _close(model.K[I["y_t1"], I["y_c"]], -2 * V.K_sy)
-    assert _close(model.K[I["y_t1"], I["y_t1"]], 4 * V.K_py + 2 * V.K_sy)
+    assert entry(model.K, "y_c", "y_c") == exactly(4 * V.K_sy)
+    assert entry(model.C, "y_c", "y_c") == exactly(4 * V.C_sy)
+    assert entry(model.K, "y_t1", "y_c") == exactly(-2 * V.K_sy)
+    assert entry(model.K, "y_t1", "y_t1") == exactly(4 * V.K_py + 2 * V.K_sy)
 
 
 def test_gravitational_roll_terms(model):
@@ -159,37 +165,39 @@ def test_gravitational_roll_terms(model):
     roll_c = 4 * V.K_sy * V.h1**2 + 4 * V.K_sz * V.b2**2 - V.M_c * V.g * V.h1
     roll_t = (4 * V.K_py * V.h4**2 + 4 * V.K_pz * V.b1**2 + 2 * V.K_sy * V.h3**2
               + 2 * V.K_sz * V.b2**2 - V.M_t * V.g * V.h4)  # fmt: skip
-    assert _close(model.K[I["phi_c"], I["phi_c"]], roll_c)
-    assert _close(model.K[I["phi_t1"], I["phi_t1"]], roll_t)
-    assert _close(model.K[I["phi_t2"], I["phi_t2"]], roll_t)
+    assert entry(model.K, "phi_c", "phi_c") == exactly(roll_c)
+    assert entry(model.K, "phi_t1", "phi_t1") == exactly(roll_t)
+    assert entry(model.K, "phi_t2", "phi_t2") == exactly(roll_t)
 
 
 def test_secondary_lever_arm_front_plus_l_rear_minus_l(model):
     """The air springs of the front bogie sit at x = +l, the rear ones at -l: the lateral
     coupling to the car body's yaw is -2 K_sy l (front) and +2 K_sy l (rear)."""
-    assert _close(model.K[I["y_t1"], I["psi_c"]], -2 * V.K_sy * V.l)
-    assert _close(model.K[I["y_t2"], I["psi_c"]], +2 * V.K_sy * V.l)
-    assert _close(model.C[I["y_t1"], I["psi_c"]], -2 * V.C_sy * V.l)
-    assert _close(model.C[I["y_t2"], I["psi_c"]], +2 * V.C_sy * V.l)
-    assert _close(model.K[I["psi_c"], I["psi_c"]], 4 * V.K_sy * V.l**2 + 4 * V.K_sx * V.b2**2)
-    assert _close(model.K[I["y_c"], I["phi_c"]], -4 * V.K_sy * V.h1)
-    assert _close(model.C[I["phi_c"], I["phi_c"]], 4 * V.C_sy * V.h2**2 + 4 * V.C_sz * V.b3**2)
-    assert model.K[I["y_c"], I["psi_c"]] == pytest.approx(0.0, abs=1e-6)  # front/rear cancel
+    assert entry(model.K, "y_t1", "psi_c") == exactly(-2 * V.K_sy * V.l)
+    assert entry(model.K, "y_t2", "psi_c") == exactly(+2 * V.K_sy * V.l)
+    assert entry(model.C, "y_t1", "psi_c") == exactly(-2 * V.C_sy * V.l)
+    assert entry(model.C, "y_t2", "psi_c") == exactly(+2 * V.C_sy * V.l)
+    yaw_c = 4 * V.K_sy * V.l**2 + 4 * V.K_sx * V.b2**2
+    assert entry(model.K, "psi_c", "psi_c") == exactly(yaw_c)
+    assert entry(model.K, "y_c", "phi_c") == exactly(-4 * V.K_sy * V.h1)
+    roll_damping_c = 4 * V.C_sy * V.h2**2 + 4 * V.C_sz * V.b3**2
+    assert entry(model.C, "phi_c", "phi_c") == exactly(roll_damping_c)
+    assert entry(model.K, "y_c", "psi_c") == pytest.approx(0.0, abs=1e-6)  # front/rear cancel
 
 
 def test_primary_lever_arms(model):
     """Primary lateral springs at x = +-l1 from the bogie centre and h4 below its centre of
     gravity; bogie yaw from longitudinal (b1), lateral (l1) and air springs (b2)."""
-    assert _close(model.K[I["y_w1"], I["psi_t1"]], -2 * V.K_py * V.l1)
-    assert _close(model.K[I["y_w2"], I["psi_t1"]], +2 * V.K_py * V.l1)
-    assert _close(model.K[I["y_w3"], I["psi_t2"]], -2 * V.K_py * V.l1)
-    assert _close(model.K[I["y_w1"], I["phi_t1"]], 2 * V.K_py * V.h4)
-    assert _close(model.K[I["y_t1"], I["phi_t1"]], -4 * V.K_py * V.h4 + 2 * V.K_sy * V.h3)
-    assert _close(model.K[I["psi_w1"], I["psi_t1"]], -2 * V.K_px * V.b1**2)
+    assert entry(model.K, "y_w1", "psi_t1") == exactly(-2 * V.K_py * V.l1)
+    assert entry(model.K, "y_w2", "psi_t1") == exactly(+2 * V.K_py * V.l1)
+    assert entry(model.K, "y_w3", "psi_t2") == exactly(-2 * V.K_py * V.l1)
+    assert entry(model.K, "y_w1", "phi_t1") == exactly(2 * V.K_py * V.h4)
+    assert entry(model.K, "y_t1", "phi_t1") == exactly(-4 * V.K_py * V.h4 + 2 * V.K_sy * V.h3)
+    assert entry(model.K, "psi_w1", "psi_t1") == exactly(-2 * V.K_px * V.b1**2)
     yaw_t = 4 * V.K_px * V.b1**2 + 4 * V.K_py * V.l1**2 + 2 * V.K_sx * V.b2**2
-    assert _close(model.K[I["psi_t1"], I["psi_t1"]], yaw_t)
-    assert _close(model.K[I["psi_t2"], I["psi_t2"]], yaw_t)
-    assert _close(model.C[I["y_t1"], I["phi_t1"]], -4 * V.C_py * V.h4 + 2 * V.C_sy * V.h5)
+    assert entry(model.K, "psi_t1", "psi_t1") == exactly(yaw_t)
+    assert entry(model.K, "psi_t2", "psi_t2") == exactly(yaw_t)
+    assert entry(model.C, "y_t1", "phi_t1") == exactly(-4 * V.C_py * V.h4 + 2 * V.C_sy * V.h5)
 
 
 # ------------------------------------------------------------ whole matrices, M, B_d
@@ -316,6 +324,17 @@ def test_spin_creep_lateral_force_and_its_sign():
         assert with_spin - without == pytest.approx(spin, rel=1e-9)
         assert spin > 0.05 * abs(without)  # a material share, not rounding
         assert with_spin - without > 0
+
+
+def test_spin_coupling_yaw_moment_of_a_yawed_wheelset():
+    """f11 = f22 ~ 0, f33 = 0: a centred wheelset yawed by psi has the lateral creepage
+    -sin(psi) cos(d0) on each wheel, whose f23 coupling gives M = -2 f23 sin(psi) cos(d0)^2
+    (the gravitational moment is off: psi_rel = 0)."""
+    v = V.replace(f11=TINY, f22=TINY, f33=0.0)
+    for psi in (-2e-3, 1e-3, 3e-3):
+        expected = -2 * V.f23 * math.sin(psi) * math.cos(V.d0) ** 2
+        _, m = forces(v, "linear", 0.0, psi=psi, psi_rel=0.0)
+        assert m == pytest.approx(expected, rel=1e-9)
 
 
 def test_klingel_longitudinal_creep_yaw_moment():
