@@ -23,6 +23,12 @@ from railhunt.creep import heuristic_saturation
 from railhunt.model import N_STATE, STATE_NAMES, Model, wheelset_forces
 from railhunt.suspension import DOF_NAMES, assemble, suspension_elements, yaw_damper_rows
 
+N_DOF = len(DOF_NAMES)  # 17
+#: Slices of the state: coordinates, their rates, the four yaw damper forces.
+Q = slice(0, N_DOF)
+DQ = slice(N_DOF, 2 * N_DOF)
+F_D = slice(2 * N_DOF, N_STATE)
+
 V = railhunt.Vehicle.paper2019()
 I = {name: k for k, name in enumerate(DOF_NAMES)}  # noqa: E741
 SPEED = 300 / 3.6  # m/s
@@ -97,7 +103,7 @@ def _secondary(m, t, xc, kx, bx, ky, hc, ht, kz, bz):
 
 def hand_K(v: railhunt.Vehicle, gravity: bool = True) -> np.ndarray:
     """Stiffness matrix written out element pair by element pair (docs/model.md's table)."""
-    k = np.zeros((17, 17))
+    k = np.zeros((N_DOF, N_DOF))
     for t, xc, wheelsets in (("t1", v.l, ("w1", "w2")), ("t2", -v.l, ("w3", "w4"))):
         for w, xr in zip(wheelsets, (v.l1, -v.l1), strict=True):
             _primary(k, w, t, xr, v.K_px, v.K_py, v.K_pz, v)
@@ -112,7 +118,7 @@ def hand_K(v: railhunt.Vehicle, gravity: bool = True) -> np.ndarray:
 def hand_C(v: railhunt.Vehicle) -> np.ndarray:
     """Damping matrix: primary dampers beside the springs; secondary lateral dampers at
     (+-b2, heights h2 / h5), vertical dampers at +-b3, no secondary longitudinal damper."""
-    c = np.zeros((17, 17))
+    c = np.zeros((N_DOF, N_DOF))
     for t, xc, wheelsets in (("t1", v.l, ("w1", "w2")), ("t2", -v.l, ("w3", "w4"))):
         for w, xr in zip(wheelsets, (v.l1, -v.l1), strict=True):
             _primary(c, w, t, xr, v.C_px, v.C_py, v.C_pz, v)
@@ -126,7 +132,7 @@ def model() -> Model:
 
 
 def entry(m: np.ndarray, a: str, b: str) -> float:
-    """Entry (a, b) of a 17 x 17 matrix by coordinate names."""
+    """Entry (a, b) of a coordinate x coordinate matrix by names."""
     return float(m[I[a], I[b]])
 
 
@@ -158,7 +164,7 @@ def test_gravitational_roll_terms(model):
     """K = suspension + G, G = diag(-M_c g h1 on phi_c, -M_t g h4 on each phi_t); and the
     roll diagonals in full, from the parameters."""
     k_susp, _ = assemble(suspension_elements(V))
-    g = np.zeros((17, 17))
+    g = np.zeros((N_DOF, N_DOF))
     g[I["phi_c"], I["phi_c"]] = -V.M_c * V.g * V.h1
     g[I["phi_t1"], I["phi_t1"]] = g[I["phi_t2"], I["phi_t2"]] = -V.M_t * V.g * V.h4
     np.testing.assert_allclose(model.K - k_susp, g, rtol=0, atol=1e-6)
@@ -227,7 +233,7 @@ def test_yaw_damper_rows():
     """Elongation of damper (front left, front right, rear left, rear right) = -+b4 (psi_t -
     psi_c): a longitudinal element at lateral arm +-b4 between car body and bogie."""
     b4 = V.b4
-    expected = np.zeros((4, 17))
+    expected = np.zeros((4, N_DOF))
     for d, (t, s) in enumerate((("t1", 1), ("t1", -1), ("t2", 1), ("t2", -1))):
         expected[d, I[f"psi_{t}"]] = -s * b4
         expected[d, I["psi_c"]] = +s * b4
@@ -245,19 +251,19 @@ def test_right_hand_side_uses_K_C_and_the_dampers(model):
         x[STATE_NAMES.index(n)] = rng.normal(0, 1e-3)
         x[STATE_NAMES.index("d" + n)] = rng.normal(0, 1e-2)
     forces = rng.uniform(-1000.0, 1000.0, 4)  # N, below F_u = 3000 N
-    x[34:] = forces
-    q, dq = x[:17], x[17:34]
+    x[F_D] = forces
+    q, dq = x[Q], x[DQ]
     b4 = V.b4
-    bd = np.zeros((4, 17))
+    bd = np.zeros((4, N_DOF))
     for d, (t, s) in enumerate((("t1", 1), ("t1", -1), ("t2", 1), ("t2", -1))):
         bd[d, I[f"psi_{t}"]], bd[d, I["psi_c"]] = -s * b4, s * b4
     mass = np.array([V.M_c, V.J_cz, V.J_cx] + [V.M_t, V.J_tz, V.J_tx] * 2 + [V.M_w, V.J_wz] * 4)
     acc = -(hand_K(V) @ q + hand_C(V) @ dq + bd.T @ forces) / mass
     rate = V.K_d * (bd @ dq - forces / V.C_d1)
     out = model.derivative(x, SPEED)
-    np.testing.assert_allclose(out[:17], dq, rtol=0, atol=0)
-    np.testing.assert_allclose(out[17:34], acc, rtol=1e-10, atol=1e-12 * np.abs(acc).max())
-    np.testing.assert_allclose(out[34:], rate, rtol=1e-10, atol=1e-12 * np.abs(rate).max())
+    np.testing.assert_allclose(out[Q], dq, rtol=0, atol=0)
+    np.testing.assert_allclose(out[DQ], acc, rtol=1e-10, atol=1e-12 * np.abs(acc).max())
+    np.testing.assert_allclose(out[F_D], rate, rtol=1e-10, atol=1e-12 * np.abs(rate).max())
 
 
 # ---------------------------------------------------------------- wheel/rail forces

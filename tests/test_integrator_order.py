@@ -19,14 +19,16 @@ import pytest
 from scipy.linalg import expm
 
 import railhunt
-from railhunt.model import N_STATE, Model
+from railhunt.model import N_STATE, STATE_NAMES, Model
 from railhunt.simulation import integrate_model
+from railhunt.suspension import DOF_NAMES
 
 V = railhunt.Vehicle.paper2019()
 SPEED = 300 / 3.6  # m/s
 AMPLITUDE = 1e-7  # m
 DURATION = 0.5  # s
-N_Q = 17  # displacements and angles: the errors are compared on these
+Q = slice(0, len(DOF_NAMES))  # the 17 coordinates (m, rad): errors are compared on these
+F_D = [STATE_NAMES.index(f"F_d{k}") for k in range(1, 5)]  # yaw damper forces (N)
 
 
 @pytest.fixture(scope="module")
@@ -37,20 +39,20 @@ def linear_case():
         jac = np.empty((N_STATE, N_STATE))
         for k in range(N_STATE):
             e = np.zeros(N_STATE)
-            e[k] = h_f if k >= 2 * N_Q else h_q
+            e[k] = h_f if k in F_D else h_q
             jac[:, k] = (model.derivative(e, SPEED) - model.derivative(-e, SPEED)) / (2 * e[k])
         return jac
 
     jac = (4 * central(1e-5, 1e-1) - central(2e-5, 2e-1)) / 3
     x0 = np.zeros(N_STATE)
-    x0[[9, 11, 13, 15]] = AMPLITUDE  # every wheelset displaced
-    x0[10] = AMPLITUDE  # the leading one yawed, 0.1 urad
+    x0[[STATE_NAMES.index(f"y_w{j}") for j in range(1, 5)]] = AMPLITUDE  # all displaced
+    x0[STATE_NAMES.index("psi_w1")] = AMPLITUDE  # the leading one yawed, 0.1 urad
     exact = expm(jac * DURATION) @ x0
     return model, jac, x0, exact
 
 
 def _error(x_end: np.ndarray, exact: np.ndarray) -> float:
-    return float(np.max(np.abs(x_end[:N_Q] - exact[:N_Q])) / np.max(np.abs(exact[:N_Q])))
+    return float(np.max(np.abs(x_end[Q] - exact[Q])) / np.max(np.abs(exact[Q])))
 
 
 def test_reference_jacobian_agrees_with_model_jacobian(linear_case):
