@@ -37,7 +37,9 @@ from railhunt.analysis.periodic import (
     Shooting,
     newton,
 )
-from railhunt.model import N_STATE, Y_W1, Model
+from railhunt.kernel.layout import N_STATE, Y_W1
+from railhunt.model import Model
+from railhunt.units import kmh_to_ms, ms_to_kmh
 from railhunt.vehicle import Vehicle
 
 HOPF_TYPES = ("subcritical", "supercritical-a", "supercritical-b")
@@ -235,7 +237,7 @@ def _check_range(speed_range_kmh: tuple[float, float]) -> tuple[float, float]:
 
 def _hopf_start(model: Model, hopf_kmh: float) -> tuple[np.ndarray, float]:
     """Hunting eigenvector normalised to y_w1 = 1 (real state shape) and the period (s)."""
-    w, vecs = eigenvalues(model, hopf_kmh / 3.6)
+    w, vecs = eigenvalues(model, kmh_to_ms(hopf_kmh))
     k = hunting_mode_index(w, vecs, model.vehicle.a)
     lam = w[k]
     if lam.imag < 0:
@@ -300,7 +302,7 @@ class _Tracer:
             tangent = self.null_vector(jac, tangent)
             ok = False
             while ds >= ds_min:
-                dv_kmh = abs(tangent[-1]) * Shooting.V_SCALE * 3.6
+                dv_kmh = ms_to_kmh(abs(tangent[-1]) * Shooting.V_SCALE)
                 da = abs(tangent[iy]) * STATE_SCALE[Y_W1]
                 ds = min(ds, ds_max, lim.max_step_kmh / max(dv_kmh, 1e-12),
                          lim.max_step_amplitude / max(da, 1e-12))  # fmt: skip
@@ -444,7 +446,7 @@ def bifurcation_diagram(
     if not math.isfinite(hopf):
         raise ValueError("the centred equilibrium stays stable up to 2000 km/h: no Hopf point")
     shape, period0 = _hopf_start(model, hopf)
-    shoot = Shooting(model, symmetric=symmetric, dt=dt, dt_speed=max(hi, hopf) / 3.6)
+    shoot = Shooting(model, symmetric=symmetric, dt=dt, dt_speed=kmh_to_ms(max(hi, hopf)))
     shoot.set_period_hint(period0)
     tracer = _Tracer(shoot, limits, on_point)
     iy = tracer.iy
@@ -452,7 +454,7 @@ def bifurcation_diagram(
     # 1. Three small orbits with y_w1(0) fixed (natural parameter), from the eigenvector.
     seeds = (5e-5, 1e-4, 2e-4)
     small: list[tuple[np.ndarray, PeriodicOrbit, tuple]] = []
-    u = shoot.pack(seeds[0] * shape, period0, hopf / 3.6)
+    u = shoot.pack(seeds[0] * shape, period0, kmh_to_ms(hopf))
     for n, eps in enumerate(seeds):
         target = eps / STATE_SCALE[Y_W1]
         if n >= 2:
@@ -584,7 +586,7 @@ def _seed_orbit(model: Model, shoot: Shooting, speed_kmh: float, amplitude: floa
     from railhunt.analysis.periodic import phase_origin
     from railhunt.simulation import auto_step, integrate_model
 
-    speed = speed_kmh / 3.6
+    speed = kmh_to_ms(speed_kmh)
     x0 = np.zeros(N_STATE)
     x0[[9, 11, 13, 15]] = amplitude
     dt = auto_step(model, speed)
