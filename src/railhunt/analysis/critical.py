@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from railhunt.analysis.search import bracket_and_bisect, check_search
-from railhunt.kernel.integrators import STATUS_NAMES
+from railhunt.kernel.integrators import OK, STATUS_NAMES
 from railhunt.kernel.layout import N_STATE, Y_W1
 from railhunt.model import Model
 from railhunt.simulation import Y_LIMIT, auto_step, excitation_end_time, integrate_model
@@ -177,11 +177,11 @@ def run_until_verdict(
     Returns
     -------
     verdict : {"stable", "hunting"}
-        ``"hunting"`` also when the run left the track or diverged (``code != 0``).
+        ``"hunting"`` also when the run left the track or diverged (``code != OK``).
     t, x : numpy.ndarray
         The whole record: times (s) and states.
     code : int
-        Integrator status (0 ok, 1 derailed, 2 diverged, 3 step failed).
+        Integrator status (:data:`railhunt.kernel.integrators.STATUS_NAMES`).
     amplitude, growth_rate : float
         Final envelope of ``y_w1`` (m) and its log slope (1/s), as :func:`judge` gives them.
     decided : bool
@@ -201,7 +201,7 @@ def run_until_verdict(
         ts.append(t if not ts else t[1:])
         xs.append(x if not xs else x[1:])
         tt, xx = np.concatenate(ts), np.concatenate(xs)
-        if code != 0:
+        if code != OK:
             return HUNTING, tt, xx, code, float(np.max(np.abs(xx[-50:, Y_W1]))), math.nan, True
         final = tt[-1] - t_exc >= judgement.max_duration - 1e-9
         verdict, amp, rate = judge(tt, xx[:, Y_W1], t_exc, judgement, final=final)
