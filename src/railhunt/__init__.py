@@ -79,7 +79,7 @@ _EXPORTS = {
     "sweep": "railhunt.studies.sweep",
     "read_results": "railhunt.studies.store",
     "SweepResults": "railhunt.studies.store",
-    "load_table1": "railhunt.studies.sections",
+    "load_table1": "railhunt.paper2019",
     "table1_study": "railhunt.studies.sections",
     "section_changes": "railhunt.studies.sections",
     "reproduce": "railhunt.studies.reproduce",
@@ -130,10 +130,10 @@ if TYPE_CHECKING:
         track_spectrum as track_spectrum,
     )
     from railhunt.model import Model as Model
+    from railhunt.paper2019 import load_table1 as load_table1
     from railhunt.simulation import SimulationResult as SimulationResult, simulate as simulate
     from railhunt.studies.reproduce import reproduce as reproduce
     from railhunt.studies.sections import (
-        load_table1 as load_table1,
         section_changes as section_changes,
         table1_study as table1_study,
     )
