@@ -24,7 +24,7 @@ from railhunt.cli import (
 )
 
 #: Blow-off force (N) standing for "no blow-off" ('inf' on the command line).
-_NO_BLOWOFF = 1e12
+from railhunt.paper2019 import NO_BLOWOFF as _NO_BLOWOFF
 
 
 def _parse_forces(ctx: click.Context, param: click.Parameter,
