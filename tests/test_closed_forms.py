@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 import railhunt
-from railhunt.creep import heuristic_saturation
+from railhunt.kernel.creep import heuristic_saturation
 from railhunt.model import N_STATE, STATE_NAMES, Model, wheelset_forces
 from railhunt.suspension import DOF_NAMES, assemble, suspension_elements, yaw_damper_rows
 
