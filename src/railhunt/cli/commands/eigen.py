@@ -19,7 +19,8 @@ from railhunt.cli.output import linear_critical_speed_line, spinner, stdout_cons
 from railhunt.cli.rules import command
 
 
-@command("eigen", short_help="Hunting frequency and damping vs speed (linearised model).")
+@command("eigen",
+         short_help="Damping and frequency of the hunting mode vs speed (linearised model).")
 @kmh_option("--from", "from_kmh", 50.0, 1000.0, "Lowest speed (km/h).")
 @kmh_option("--to", "to_kmh", 500.0, 1000.0, "Highest speed (km/h).")
 @kmh_option("--step", "step_kmh", 10.0, 1000.0, "Speed step (km/h).")
