@@ -150,10 +150,3 @@ def test_a_rule_must_name_an_option():
             click.option("--seed")(lambda seed: None)
         )
 
-
-def test_every_command_declares_valid_rules():
-    """The rules of every command name its own options (checked when it is defined)."""
-    for cmd in main.commands.values():
-        for rule in getattr(cmd, "rules", ()):
-            flags = {c.flag for c in rule.conditions()}
-            assert flags <= {o for p in cmd.params for o in p.opts}, cmd.name

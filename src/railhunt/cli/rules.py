@@ -77,7 +77,7 @@ class _Rule:
         return next((c.flag for c in group if c.holds(ctx, names[c.flag])), None)
 
     def _text(self, ctx: click.Context, **where: str | None) -> str:
-        return self.message.format(**where, **ctx.params)
+        return self.message.format_map({**ctx.params, **where})
 
 
 @dataclass(frozen=True)
