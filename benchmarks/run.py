@@ -27,12 +27,13 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 import railhunt
-from railhunt import model as rh_model
-from railhunt import suspension as rh_suspension
-from railhunt import track as rh_track
-from railhunt.model import N_STATE, WR_OFFSET, Y_W1, Model
+from railhunt.kernel import damper as rh_damper
+from railhunt.kernel import rhs as rh_rhs
+from railhunt.kernel import track as rh_track
+from railhunt.kernel.layout import FORCE0, N_DOF, N_STATE, RATE0, WHEELSET_PSI, WHEELSET_Y, Y_W1
+from railhunt.model import Model
 from railhunt.simulation import auto_step, default_atol
-from railhunt.suspension import N_DOF
+from railhunt.units import kmh_to_ms
 
 SPEED_KMH = 350.0
 DURATION = 10.0
@@ -83,30 +84,29 @@ def fmt_time(seconds: float) -> str:
 # --------------------------------------------------------------------------------------
 # Baseline: the same physics as a pure-NumPy right-hand side for scipy's solve_ivp.
 # It reuses the model's assembled arrays and calls the pure-Python versions (.py_func) of
-# the compiled scalar helpers, so there is one set of equations (railhunt.model.rhs).
+# the compiled scalar helpers, so there is one set of equations (railhunt.kernel.rhs).
 # --------------------------------------------------------------------------------------
 
 
 def numpy_rhs(model: Model, speed: float, excitation: object) -> Callable:
     """dx/dt(t, x) written with NumPy, as a typical solve_ivp user would (speed in m/s)."""
-    lin, bd, dd, dpar, wr = model.lin, model.bd, model.dd, model.dpar, model.wr
-    trk, trs = rh_track.encode(excitation)
-    offsets = wr[WR_OFFSET : WR_OFFSET + 4]
+    s = model.system(excitation)
+    lin, bd, dd, dpar, wr = s.linear, s.damper_rows, s.damper_acc, s.damper, s.wheel_rail
+    trk, trs, offsets = s.track, s.track_samples, s.wheelset_delay
     inv_mass = 1.0 / model.mass
-    iy = np.arange(9, 17, 2)  # wheelsets' lateral displacements
-    ip = iy + 1  # wheelsets' yaw angles
-    wheelset_forces = rh_model.wheelset_forces.py_func
-    damper_velocity = rh_suspension.damper_velocity.py_func
+    iy, ip = WHEELSET_Y, WHEELSET_PSI  # wheelsets' lateral displacements and yaw angles
+    wheelset_forces = rh_rhs.wheelset_forces.py_func
+    damper_velocity = rh_damper.damper_velocity.py_func
     alignment = rh_track.alignment.py_func
     nq = N_DOF
 
     def rhs(t: float, x: np.ndarray) -> np.ndarray:
-        dq = x[nq : 2 * nq]
-        forces = x[2 * nq :]
-        acc = lin @ x[: 2 * nq] + dd @ forces
-        v_visc = np.array([damper_velocity(forces[d], *dpar[d, 1:]) for d in range(4)])
+        dq = x[RATE0 : RATE0 + nq]
+        forces = x[FORCE0:]
+        acc = lin @ x[:FORCE0] + dd @ forces
+        v_visc = np.array([damper_velocity(f, *dpar[d, 1:]) for d, f in enumerate(forces)])
         dforces = dpar[:, 0] * (bd @ dq - v_visc)
-        for j in range(4):
+        for j in range(len(iy)):
             yr, slope = alignment(speed * t - offsets[j], trk, trs)
             fy, mz = wheelset_forces(
                 x[iy[j]] - yr, dq[iy[j]], x[ip[j]], x[ip[j]] - slope, dq[ip[j]], speed, wr
@@ -120,7 +120,7 @@ def numpy_rhs(model: Model, speed: float, excitation: object) -> Callable:
 
 def baseline_run(vehicle: railhunt.Vehicle, excitation: object):
     model = Model(vehicle)
-    f = numpy_rhs(model, SPEED_KMH / 3.6, excitation)
+    f = numpy_rhs(model, kmh_to_ms(SPEED_KMH), excitation)
     return solve_ivp(
         f, (0.0, DURATION), np.zeros(N_STATE), method="RK45", rtol=1e-6, atol=default_atol()
     )
@@ -129,12 +129,12 @@ def baseline_run(vehicle: railhunt.Vehicle, excitation: object):
 def check_baseline_rhs(vehicle: railhunt.Vehicle, excitation: object) -> float:
     """Largest relative difference between the NumPy and the compiled right-hand sides."""
     model = Model(vehicle)
-    speed = SPEED_KMH / 3.6
+    speed = kmh_to_ms(SPEED_KMH)
     f = numpy_rhs(model, speed, excitation)
     rng = np.random.default_rng(1)
     worst = 0.0
     for t in (0.0, 0.1, 0.25):
-        x = np.concatenate([rng.normal(0, 2e-3, 34), rng.normal(0, 2e3, 4)])
+        x = np.concatenate([rng.normal(0, 2e-3, FORCE0), rng.normal(0, 2e3, N_STATE - FORCE0)])
         a = f(t, x)
         b = model.derivative(x, speed, t=t, excitation=excitation)
         worst = max(worst, float(np.max(np.abs(a - b) / (np.abs(b) + 1e-12))))
@@ -226,7 +226,7 @@ def main(argv: list[str] | None = None) -> int:
 
     vehicle = railhunt.Vehicle.paper2019()
     exc = railhunt.SingleDefect()
-    dt_ms = auto_step(Model(vehicle), SPEED_KMH / 3.6) * 1e3
+    dt_ms = auto_step(Model(vehicle), kmh_to_ms(SPEED_KMH)) * 1e3
     rows: list[Row] = []
     print(
         f"railhunt {railhunt.__version__}, Python {sys.version.split()[0]}, "

@@ -30,7 +30,7 @@ from railhunt.contact.profiles import (
     shipped_profile,
     uic60,
 )
-from railhunt.creep import heuristic_saturation, polach_saturation
+from railhunt.kernel.creep import heuristic_saturation, polach_saturation
 
 # The reference data beside the repository (../shared/data), or where this workplace keeps it.
 SHARED = next((p for p in (Path(__file__).resolve().parents[2] / "shared" / "data",

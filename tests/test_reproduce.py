@@ -192,11 +192,11 @@ def test_cli_needs_out():
 
 
 def _png(path: Path) -> Path:
-    from railhunt.plots import _new_figure, _save
+    from railhunt.plots import new_figure, save_figure
 
-    fig = _new_figure(1.0, 1.0)
+    fig = new_figure(1.0, 1.0)
     fig.add_subplot(1, 1, 1).plot([0, 1], [0, 1])
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def _report(tmp_path: Path, rows: list[Headline], figures: list[Path]) -> Report:

@@ -530,3 +530,123 @@ def test_as_dict_is_a_copy():
     d["M_c"] = -1.0
     assert PAPER.M_c == 28000.0
     assert list(d) == list(PARAMETERS)
+
+
+# --------------------------------------------------------------------------- the table
+
+
+def test_shipped_files_agree_with_the_table():
+    """Every shipped file lists every parameter in table order, in the table's units;
+    paper2019.toml also repeats the table's meanings (the s1002 files refine some)."""
+    import tomllib
+    from importlib import resources
+
+    from railhunt.vehicle import shipped_vehicles
+
+    folder = resources.files("railhunt") / "data" / "vehicles"
+    assert "paper2019" in shipped_vehicles()
+    for name in shipped_vehicles():
+        entries = tomllib.loads((folder / f"{name}.toml").read_text(encoding="utf-8"))[
+            "parameters"
+        ]
+        assert list(entries) == list(PARAMETERS), name
+        for key, spec in PARAMETERS.items():
+            assert entries[key]["unit"] == spec.unit, (name, key)
+            if name == "paper2019":
+                assert entries[key]["meaning"] == spec.meaning, key
+        assert Vehicle.shipped(name).as_dict() == {k: float(e["value"]) for k, e in
+                                                  entries.items()}  # fmt: skip
+
+
+def test_parameter_table_is_the_vehicle_fields():
+    from railhunt.vehicle.parameters import VehicleFields
+
+    names = [f.name for f in dataclasses.fields(VehicleFields)]
+    assert names == [f.name for f in dataclasses.fields(Vehicle)]
+    assert names[:3] == ["name", "description", "contact"] and names[3:] == list(PARAMETERS)
+    assert all(spec.default is None for spec in PARAMETERS.values())
+    with pytest.raises(TypeError, match="build a Vehicle"):
+        VehicleFields(**PAPER.as_dict())
+
+
+def test_docs_page_holds_the_markdown_table():
+    from pathlib import Path
+
+    from railhunt.vehicle import parameter_markdown
+
+    table = parameter_markdown()
+    lines = table.splitlines()
+    assert len(lines) == 2 + len(PARAMETERS) + len(DERIVED)
+    assert lines[0] == "| name | unit | meaning | rule | paper2019 |"
+    assert lines[2] == "| `M_c` | kg | Car body mass | finite and > 0 | 28000 |"
+    assert lines[-2].startswith("| `v_u` | m/s | blow-off velocity of the yaw damper |")
+    page = Path(__file__).parent.parent / "docs" / "parameters.md"
+    text = page.read_text(encoding="utf-8")
+    begin = "<!-- BEGIN parameter table: railhunt.vehicle.parameter_markdown() -->\n"
+    end = "<!-- END parameter table -->"
+    assert text[text.index(begin) + len(begin):text.index(end)] == table, (
+        "docs/parameters.md is out of date: paste the output of "
+        "python -c 'from railhunt.vehicle import parameter_markdown as m; print(m(), end=\"\")'"
+    )
+
+
+def test_a_parameter_with_a_default_is_optional():
+    """The mechanism for parameters added later, on a test-only table."""
+    from railhunt.vehicle import NONNEGATIVE as AT_LEAST_ZERO
+    from railhunt.vehicle import POSITIVE as ABOVE_ZERO
+    from railhunt.vehicle import parameter
+    from railhunt.vehicle.rules import parameter_specs
+
+    @dataclasses.dataclass(frozen=True, kw_only=True)
+    class Table:
+        name: str = "t"
+        old: float = parameter("kg", ABOVE_ZERO, "A parameter from the start")
+        new: float = parameter("m", AT_LEAST_ZERO, "Added later", default=0)
+
+    specs = parameter_specs(Table)
+    assert list(specs) == ["old", "new"]
+    assert specs["old"].default is None
+    assert specs["new"].default == 0.0 and isinstance(specs["new"].default, float)
+    assert specs["new"] == ("new", "m", "Added later", AT_LEAST_ZERO, 0.0)
+    assert Table(old=1.0).new == 0.0
+    with pytest.raises(TypeError):
+        Table(new=1.0)  # old has no default
+    with pytest.raises(ValueError, match="breaks the rule"):
+        parameter("m", ABOVE_ZERO, "x", default=0.0)
+
+
+@pytest.fixture
+def delta_max_with_default(monkeypatch):
+    """PARAMETERS as if delta_max had been added with a default after files existed."""
+    import sys
+    from types import MappingProxyType
+
+    table = dict(PARAMETERS)
+    table["delta_max"] = table["delta_max"]._replace(default=1.2)
+    patched = MappingProxyType(table)
+    for module in list(sys.modules.values()):
+        if module.__name__.startswith("railhunt.vehicle") and hasattr(module, "PARAMETERS"):
+            monkeypatch.setattr(module, "PARAMETERS", patched)
+    return patched
+
+
+def test_files_written_before_a_parameter_existed_still_load(tmp_path, delta_max_with_default):
+    text = PAPER.to_toml(tmp_path / "full.toml").read_text(encoding="utf-8")
+    old = text[: text.index("[parameters.delta_max]")]  # a complete file of an older version
+    v = load_vehicle(write(tmp_path, old, "old.toml"))
+    assert v.delta_max == 1.2
+    assert v == PAPER.replace(delta_max=1.2)
+    params = PAPER.as_dict()
+    del params["delta_max"]
+    assert validate_all(params)["delta_max"] == 1.2
+    del params["d5"]
+    with pytest.raises(MissingParametersError) as info:
+        validate_all(params)
+    assert info.value.missing == ("d5",)
+    no_d5 = old[: old.index("[parameters.d5]")]
+    with pytest.raises(MissingParametersError) as info:
+        load_vehicle(write(tmp_path, no_d5, "older.toml"))
+    assert info.value.missing == ("d5",)
+    # a file with a base still takes the base's value
+    based = load_vehicle(write(tmp_path, '[vehicle]\nbase = "paper2019"\n', "based.toml"))
+    assert based.delta_max == PAPER.delta_max

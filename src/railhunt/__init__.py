@@ -27,10 +27,11 @@ Main entry points (imported lazily, so ``import railhunt`` stays fast)::
     reproduce                        the paper's Figs. 6-13 and an HTML report
 """
 
+# ruff: noqa: I001  (the TYPE_CHECKING block keeps one `from` line per module with `X as X`)
 from __future__ import annotations
 
 from importlib import import_module
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 __version__ = "0.1.0"
 
@@ -78,13 +79,76 @@ _EXPORTS = {
     "sweep": "railhunt.studies.sweep",
     "read_results": "railhunt.studies.store",
     "SweepResults": "railhunt.studies.store",
-    "load_table1": "railhunt.studies.sections",
+    "load_table1": "railhunt.paper2019",
     "table1_study": "railhunt.studies.sections",
     "section_changes": "railhunt.studies.sections",
     "reproduce": "railhunt.studies.reproduce",
 }
 
 __all__ = sorted(_EXPORTS)
+
+# The names above, for type checkers and IDEs (explicit `X as X` re-exports; at run time they
+# are imported lazily by __getattr__ below).
+if TYPE_CHECKING:
+    from railhunt.analysis.continuation import bifurcation_diagram as bifurcation_diagram
+    from railhunt.analysis.critical import critical_speed as critical_speed
+    from railhunt.analysis.frequency import hunting_frequency as hunting_frequency
+    from railhunt.analysis.linear import (
+        eigen_analysis as eigen_analysis,
+        linear_critical_speed as linear_critical_speed,
+    )
+    from railhunt.analysis.periodic import periodic_orbit as periodic_orbit
+    from railhunt.analysis.ramp import critical_speed_ramp as critical_speed_ramp
+    from railhunt.analysis.stochastic import (
+        assess_stability as assess_stability,
+        stochastic_critical_speed as stochastic_critical_speed,
+    )
+    from railhunt.contact.conicity import (
+        equivalent_conicity as equivalent_conicity,
+        equivalent_conicity_regression as equivalent_conicity_regression,
+    )
+    from railhunt.contact.fit import fit_polynomials as fit_polynomials
+    from railhunt.contact.geometry import (
+        ContactGeometry as ContactGeometry,
+        contact_geometry as contact_geometry,
+    )
+    from railhunt.contact.hertz import (
+        creep_coefficients as creep_coefficients,
+        hertz_contact as hertz_contact,
+        kalker_coefficients as kalker_coefficients,
+    )
+    from railhunt.contact.profiles import (
+        Profile as Profile,
+        read_profile as read_profile,
+        s1002 as s1002,
+        uic60 as uic60,
+    )
+    from railhunt.irregularity import (
+        TrackIrregularity as TrackIrregularity,
+        load_irregularity as load_irregularity,
+        track_irregularity as track_irregularity,
+        track_spectrum as track_spectrum,
+    )
+    from railhunt.model import Model as Model
+    from railhunt.paper2019 import load_table1 as load_table1
+    from railhunt.simulation import SimulationResult as SimulationResult, simulate as simulate
+    from railhunt.studies.reproduce import reproduce as reproduce
+    from railhunt.studies.sections import (
+        section_changes as section_changes,
+        table1_study as table1_study,
+    )
+    from railhunt.studies.store import SweepResults as SweepResults, read_results as read_results
+    from railhunt.studies.sweep import sweep as sweep
+    from railhunt.track import (
+        InitialDisplacement as InitialDisplacement,
+        SampledTrack as SampledTrack,
+        SingleDefect as SingleDefect,
+    )
+    from railhunt.vehicle import (
+        ParameterError as ParameterError,
+        Vehicle as Vehicle,
+        load_vehicle as load_vehicle,
+    )
 
 
 def __getattr__(name: str) -> Any:

@@ -1,8 +1,8 @@
 """Derived output channels: wheel/rail guiding forces and body accelerations.
 
 Computed after a run from the stored states through the model's own compiled functions
-(:func:`railhunt.model.rhs` for the accelerations, :func:`railhunt.model.wheelset_forces`
-for the forces), so no equation is written twice.
+(:func:`railhunt.kernel.rhs.derived`, which calls the one right-hand side for the
+accelerations and the wheelset forces for ΣY), so no equation is written twice.
 
 Channels (SI units)
 -------------------
@@ -22,11 +22,9 @@ Channels (SI units)
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
-from railhunt import track as _track
-from railhunt.model import WR_OFFSET, rhs, wheelset_forces
-from railhunt.suspension import DOF_NAMES
+from railhunt.kernel.layout import LAYOUT, SystemArrays
+from railhunt.kernel.rhs import derived
 
 #: Names of the derived channels, in the column order of :func:`derived_channels`.
 CHANNEL_NAMES: tuple[str, ...] = (
@@ -34,33 +32,11 @@ CHANNEL_NAMES: tuple[str, ...] = (
 )  # fmt: skip
 #: Unit of each derived channel.
 CHANNEL_UNITS = {"SY": "N", "ddy": "m/s^2", "ddpsi": "rad/s^2"}
-_ACC = np.array([DOF_NAMES.index(n) for n in ("y_t1", "y_t2", "psi_t1", "psi_t2")])
-
-
-@njit(cache=True)
-def _derived(t, x, v, lin, bd, dd, dpar, wr, trk, trs, acc_idx):
-    nq = 17
-    n = t.shape[0]
-    res = np.empty((n, 8))
-    out = np.empty(x.shape[1])
-    for i in range(n):
-        xi = x[i]
-        rhs(t[i], xi, v, lin, bd, dd, dpar, wr, trk, trs, out)
-        for j in range(4):
-            iy = 9 + 2 * j
-            ip = iy + 1
-            yr, slope = _track.alignment(v * t[i] - wr[WR_OFFSET + j], trk, trs)
-            fy, _ = wheelset_forces(
-                xi[iy] - yr, xi[nq + iy], xi[ip], xi[ip] - slope, xi[nq + ip], v, wr
-            )
-            res[i, j] = -fy
-        for k in range(4):
-            res[i, 4 + k] = out[nq + acc_idx[k]]
-    return res
+_ACC = np.array([LAYOUT.dof(n) for n in ("y_t1", "y_t2", "psi_t1", "psi_t2")])
 
 
 def derived_channels(
-    t: np.ndarray, x: np.ndarray, args: tuple
+    t: np.ndarray, x: np.ndarray, speed: float, system: SystemArrays
 ) -> dict[str, np.ndarray]:
     """Guiding forces and bogie accelerations along a run.
 
@@ -70,8 +46,10 @@ def derived_channels(
         Times (s).
     x : numpy.ndarray
         States, one row per time.
-    args : tuple
-        The model arguments of the run (:meth:`railhunt.model.Model.args`).
+    speed : float
+        Forward speed of the run (m/s).
+    system : SystemArrays
+        The model's arrays with the run's track input (:meth:`railhunt.model.Model.system`).
 
     Returns
     -------
@@ -80,5 +58,5 @@ def derived_channels(
     """
     t = np.ascontiguousarray(t, dtype=np.float64)
     x = np.ascontiguousarray(x, dtype=np.float64)
-    res = _derived(t, x, *args, _ACC)
+    res = derived(t, x, speed, system, _ACC)
     return {name: res[:, k].copy() for k, name in enumerate(CHANNEL_NAMES)}

@@ -10,16 +10,26 @@ from pathlib import Path
 
 import numpy as np
 
-from railhunt import integrate
 from railhunt.channels import CHANNEL_UNITS, derived_channels
-from railhunt.model import N_STATE, STATE_NAMES, Model
-from railhunt.suspension import DAMPER_NAMES, N_DAMPER
+from railhunt.kernel import integrators
+from railhunt.kernel.layout import (
+    DAMPER_NAMES,
+    FORCES,
+    N_DAMPER,
+    N_DOF,
+    N_STATE,
+    STATE_NAMES,
+    DamperParam,
+)
+from railhunt.model import Model
 from railhunt.track import InitialDisplacement, SampledTrack, SingleDefect
+from railhunt.units import kmh_to_ms, ms_to_kmh
 from railhunt.vehicle import Vehicle
 
 #: Default derailment limit: lateral wheelset displacement relative to the track (m).
 Y_LIMIT = 0.025
-METHODS = ("rk4", "dopri5")
+#: Names of the integrators (:data:`railhunt.kernel.integrators.METHODS`).
+METHODS = tuple(integrators.METHODS)
 
 
 @dataclass
@@ -31,7 +41,7 @@ class SimulationResult:
     t : numpy.ndarray
         Times (s).
     x : numpy.ndarray
-        States, one row per time (see :data:`railhunt.model.STATE_NAMES`).
+        States, one row per time (see :data:`railhunt.kernel.layout.STATE_NAMES`).
     speed : float
         Forward speed (m/s).
     status : str
@@ -62,7 +72,7 @@ class SimulationResult:
     @property
     def speed_kmh(self) -> float:
         """Forward speed (km/h)."""
-        return self.speed * 3.6
+        return ms_to_kmh(self.speed)
 
     @property
     def ok(self) -> bool:
@@ -126,7 +136,7 @@ def excitation_end_time(model: Model, excitation: object, speed: float) -> float
 
 def default_atol() -> np.ndarray:
     """Absolute tolerances per state for the adaptive integrator (state units)."""
-    return np.concatenate([np.full(17, 1e-8), np.full(17, 1e-7), np.full(N_DAMPER, 1e-3)])
+    return integrators.default_atol(N_DOF, N_DAMPER)
 
 
 def auto_step(model: Model, speed: float, safety: float = 0.6, dt_max: float = 1e-3) -> float:
@@ -140,7 +150,9 @@ def auto_step(model: Model, speed: float, safety: float = 0.6, dt_max: float = 1
     """
     rate = float(np.max(np.abs(np.linalg.eigvals(model.jacobian(speed)))))
     d = model.dpar
-    rate = max(rate, float(np.max(d[:, 0] / d[:, 1])), float(np.max(d[:, 0] / d[:, 2])))
+    k_d = d[:, DamperParam.K_D]
+    rate = max(rate, float(np.max(k_d / d[:, DamperParam.C_D1])),
+               float(np.max(k_d / d[:, DamperParam.C_D2])))  # fmt: skip
     return min(dt_max, safety / rate)
 
 
@@ -162,22 +174,12 @@ def integrate_model(
 
     Returns times, states, the integrator's status code and a dict of statistics.
     """
-    args = model.args(speed, excitation)
-    if method == "rk4":
-        n_steps = int(round(duration / dt))
-        stride = 1 if output_dt is None else max(1, int(round(output_dt / dt)))
-        t, x, status = integrate.rk4(x0, t0, dt, n_steps, stride, y_limit, *args)
-        return t, x, status, {"steps": n_steps, "rhs_calls": 4 * n_steps}
-    if method == "dopri5":
-        atol_v = default_atol() if atol is None else np.broadcast_to(atol, (N_STATE,)).copy()
-        out_dt = -1.0 if output_dt is None else float(output_dt)
-        max_steps = int(max(1000, duration / 1e-5))
-        t, x, status, n_acc, n_rej = integrate.dopri5(
-            x0, t0, t0 + duration, out_dt, rtol, atol_v, 1e-4, 0.01, max_steps, y_limit, *args
-        )
-        stats = {"steps": n_acc, "rejected": n_rej, "rhs_calls": 6 * (n_acc + n_rej) + 1}
-        return t, x, status, stats
-    raise ValueError(f"method = {method!r} is invalid: must be one of {METHODS}")
+    if method not in integrators.METHODS:
+        raise ValueError(f"method = {method!r} is invalid: must be one of {METHODS}")
+    return integrators.METHODS[method](
+        x0, t0, duration, *model.args(speed, excitation), dt=dt, output_dt=output_dt,
+        rtol=rtol, atol=atol, y_limit=y_limit,
+    )  # fmt: skip
 
 
 def _check_positive(name: str, value: float, unit: str, low: float = 0.0,
@@ -244,7 +246,7 @@ def simulate(
     -------
     SimulationResult
     """
-    speed = _check_positive("speed_kmh", speed_kmh, "km/h", 0.0, 1000.0) / 3.6
+    speed = kmh_to_ms(_check_positive("speed_kmh", speed_kmh, "km/h", 0.0, 1000.0))
     _check_positive("duration", duration, "s", 0.0, 1e5)
     if dt is not None:
         _check_positive("dt", dt, "s", 0.0, 0.01)
@@ -262,19 +264,10 @@ def simulate(
         model, speed, duration, x_init, excitation=excitation, method=method, dt=dt,
         output_dt=output_dt, rtol=rtol, y_limit=y_limit,
     )  # fmt: skip
-    status = integrate.STATUS_NAMES[code]
-    if code == integrate.OK:
-        message = f"reached t = {t[-1]:.3f} s"
-    elif code == integrate.DERAILED:
-        message = (f"stopped at t = {t[-1]:.3f} s: a wheelset moved more than "
-                   f"{y_limit * 1e3:.1f} mm from the track centre line")  # fmt: skip
-    elif code == integrate.DIVERGED:
-        message = f"stopped at t = {t[-1]:.3f} s: the state became non-finite"
-    else:
-        message = f"stopped at t = {t[-1]:.3f} s: step size underflow"
-    vd = model.damper_velocities(x[:, -N_DAMPER:])
+    vd = model.damper_velocities(x[:, FORCES])
     return SimulationResult(
-        t=t, x=x, speed=speed, status=status, message=message, damper_velocity=vd,
+        t=t, x=x, speed=speed, status=integrators.STATUS_NAMES[code],
+        message=integrators.status_message(code, t[-1], y_limit), damper_velocity=vd,
         excitation_end=excitation_end_time(model, excitation, speed), stats=stats,
-        derived=derived_channels(t, x, model.args(speed, excitation)),
+        derived=derived_channels(t, x, *model.args(speed, excitation)),
     )  # fmt: skip

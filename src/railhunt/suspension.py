@@ -17,8 +17,11 @@ relative to the centre of gravity::
     u_z = -phi * py
 
 The yaw damper is a Maxwell element (linear spring ``K_d`` in series with a two-stage
-viscous damper, Eqs. 35-37 of the paper); its force is an ODE state (see
-:func:`damper_velocity`).
+viscous damper, Eqs. 35-37 of the paper); its force is an ODE state. Its rows are
+assembled here (:func:`yaw_damper_rows`); its law is compiled in
+:mod:`railhunt.kernel.damper` (:func:`damper_velocity`, re-exported here).
+
+The state layout (which coordinate sits where) is :mod:`railhunt.kernel.layout`.
 """
 
 from __future__ import annotations
@@ -26,33 +29,16 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit
 
+from railhunt.kernel.damper import damper_force_steady, damper_velocity
+from railhunt.kernel.layout import BODY_DOFS, DAMPER_NAMES, DOF_NAMES, LAYOUT, N_DAMPER, N_DOF
 from railhunt.vehicle import Vehicle
 
-#: Names of the 17 generalised coordinates, in state order.
-DOF_NAMES: tuple[str, ...] = (
-    "y_c", "psi_c", "phi_c",
-    "y_t1", "psi_t1", "phi_t1",
-    "y_t2", "psi_t2", "phi_t2",
-    "y_w1", "psi_w1", "y_w2", "psi_w2", "y_w3", "psi_w3", "y_w4", "psi_w4",
-)  # fmt: skip
-N_DOF = len(DOF_NAMES)
-#: Yaw dampers: front bogie left/right, rear bogie left/right.
-DAMPER_NAMES: tuple[str, ...] = ("d1", "d2", "d3", "d4")
-N_DAMPER = len(DAMPER_NAMES)
-
-# Body name -> indices of (y, psi, phi) in q; -1 where the body has no such coordinate.
-BODY_DOFS: dict[str, tuple[int, int, int]] = {
-    "car": (0, 1, 2),
-    "bogie1": (3, 4, 5),
-    "bogie2": (6, 7, 8),
-    "wheelset1": (9, 10, -1),
-    "wheelset2": (11, 12, -1),
-    "wheelset3": (13, 14, -1),
-    "wheelset4": (15, 16, -1),
-}
-
+__all__ = [
+    "BODY_DOFS", "DAMPER_NAMES", "DOF_NAMES", "N_DAMPER", "N_DOF", "Element", "assemble",
+    "damper_force_steady", "damper_velocity", "gravity_stiffness", "mass_matrix_diagonal",
+    "point_row", "suspension_elements", "yaw_damper_rows",
+]  # fmt: skip
 
 @dataclass(frozen=True)
 class Element:
@@ -91,7 +77,7 @@ class Element:
 
 
 def point_row(body: str, point: tuple[float, float, float], axis: str) -> np.ndarray:
-    """Displacement of a body-fixed point along ``axis`` as a row over the 17 coordinates.
+    """Displacement of a body-fixed point along ``axis`` as a row over the coordinates q.
 
     Parameters
     ----------
@@ -105,7 +91,7 @@ def point_row(body: str, point: tuple[float, float, float], axis: str) -> np.nda
     Returns
     -------
     numpy.ndarray
-        Row of length 17 (m per m or m per rad).
+        Row of length ``N_DOF`` (m per m or m per rad).
     """
     iy, ipsi, iphi = BODY_DOFS[body]
     px, py, pz = point
@@ -184,9 +170,9 @@ def assemble(elements: list[Element]) -> tuple[np.ndarray, np.ndarray]:
 
     Returns
     -------
-    K : numpy.ndarray, shape (17, 17)
+    K : numpy.ndarray, shape (N_DOF, N_DOF)
         Stiffness matrix (N/m, N*m/rad, ...), symmetric.
-    C : numpy.ndarray, shape (17, 17)
+    C : numpy.ndarray, shape (N_DOF, N_DOF)
         Damping matrix (N*s/m, ...), symmetric.
     """
     K = np.zeros((N_DOF, N_DOF))
@@ -206,8 +192,9 @@ def gravity_stiffness(vehicle: Vehicle) -> np.ndarray:
     (``h1``), bogie frames on the primary suspension at wheelset-centre height (``h4``).
     """
     G = np.zeros((N_DOF, N_DOF))
-    G[2, 2] = -vehicle.M_c * vehicle.g * vehicle.h1
-    for iphi in (5, 8):
+    car = LAYOUT.dof("phi_c")
+    G[car, car] = -vehicle.M_c * vehicle.g * vehicle.h1
+    for iphi in (LAYOUT.dof("phi_t1"), LAYOUT.dof("phi_t2")):
         G[iphi, iphi] = -vehicle.M_t * vehicle.g * vehicle.h4
     return G
 
@@ -215,10 +202,13 @@ def gravity_stiffness(vehicle: Vehicle) -> np.ndarray:
 def mass_matrix_diagonal(vehicle: Vehicle) -> np.ndarray:
     """Diagonal of the mass matrix (kg and kg*m^2) in state order."""
     v = vehicle
+    inertia = {
+        "car": {"y": v.M_c, "psi": v.J_cz, "phi": v.J_cx},
+        "bogie": {"y": v.M_t, "psi": v.J_tz, "phi": v.J_tx},
+        "wheelset": {"y": v.M_w, "psi": v.J_wz},
+    }
     return np.array(
-        [v.M_c, v.J_cz, v.J_cx]
-        + [v.M_t, v.J_tz, v.J_tx] * 2
-        + [v.M_w, v.J_wz] * 4
+        [inertia[b.name.rstrip("0123456789")][c] for b in LAYOUT.bodies for c in b.coordinates]
     )
 
 
@@ -237,43 +227,3 @@ def yaw_damper_rows(vehicle: Vehicle) -> np.ndarray:
                 - point_row("car", (xc, s * vehicle.b4, 0.0), "x")
             )
     return np.array(rows)
-
-
-@njit(cache=True)
-def damper_velocity(force: float, c1: float, c2: float, f_u: float) -> float:
-    """Velocity of the two-stage viscous damper carrying ``force`` (inverse of Fig. 4b).
-
-    Parameters
-    ----------
-    force : float
-        Damper force (N), positive in tension.
-    c1, c2 : float
-        First- and second-stage damping (N*s/m).
-    f_u : float
-        Blow-off force (N); the blow-off velocity is ``f_u / c1``.
-
-    Returns
-    -------
-    float
-        Elongation rate of the viscous part (m/s): ``force / c1`` below blow-off,
-        ``sign(force) * (f_u / c1 + (|force| - f_u) / c2)`` above. Odd in ``force``.
-    """
-    af = abs(force)
-    if af <= f_u:
-        return force / c1
-    vel = f_u / c1 + (af - f_u) / c2
-    return vel if force > 0.0 else -vel
-
-
-@njit(cache=True)
-def damper_force_steady(velocity: float, c1: float, c2: float, f_u: float) -> float:
-    """Steady two-stage damper force at a constant velocity (Fig. 4b), N.
-
-    ``c1 * v`` for ``|v| <= v_u = f_u / c1``, then ``sign(v) * (f_u + c2 * (|v| - v_u))``.
-    """
-    v_u = f_u / c1
-    av = abs(velocity)
-    if av <= v_u:
-        return c1 * velocity
-    f = f_u + c2 * (av - v_u)
-    return f if velocity > 0.0 else -f

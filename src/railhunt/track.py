@@ -5,7 +5,7 @@ stands at ``t = 0``; wheelset ``j`` is at ``s_j(t) = v*t - offset_j`` with ``off
 its distance behind the leading wheelset, so each wheelset meets a defect in turn.
 
 The compiled right-hand side reads the track from a small array (``code``, then
-parameters) and a sample array; :func:`encode` builds them.
+parameters) and a sample array (:mod:`railhunt.kernel.track`); :func:`encode` builds them.
 """
 
 from __future__ import annotations
@@ -14,9 +14,8 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit
 
-IDEAL, BUMP, SINE, SAMPLED = 0, 1, 2, 3
+from railhunt.kernel.track import TrackInput
 
 
 def _check(name: str, value: float, low: float, high: float, unit: str) -> float:
@@ -124,37 +123,11 @@ def encode(excitation: object) -> tuple[np.ndarray, np.ndarray]:
     """
     dummy = np.zeros(1)
     if isinstance(excitation, SingleDefect):
-        code = BUMP if excitation.shape == "bump" else SINE
-        return (
-            np.array([code, excitation.amplitude, excitation.wavelength, excitation.start]),
-            dummy,
-        )
+        code = TrackInput.BUMP if excitation.shape == "bump" else TrackInput.SINE
+        params = [code, excitation.amplitude, excitation.wavelength, excitation.start]
+        return np.array(params, dtype=np.float64), dummy
     if isinstance(excitation, SampledTrack):
         samples = np.ascontiguousarray(excitation.alignment, dtype=np.float64)
-        return np.array([SAMPLED, excitation.s0, excitation.ds, len(samples)]), samples
-    return np.array([IDEAL, 0.0, 0.0, 0.0]), dummy
-
-
-@njit(cache=True)
-def alignment(s: float, params: np.ndarray, samples: np.ndarray) -> tuple[float, float]:
-    """Lateral rail displacement (m) and its slope d/ds (rad) at track position ``s``."""
-    code = int(params[0])
-    if code == BUMP or code == SINE:
-        amp, wl, s0 = params[1], params[2], params[3]
-        x = s - s0
-        if x <= 0.0 or x >= wl:
-            return 0.0, 0.0
-        k = 2.0 * math.pi / wl
-        if code == BUMP:
-            return 0.5 * amp * (1.0 - math.cos(k * x)), 0.5 * amp * k * math.sin(k * x)
-        return amp * math.sin(k * x), amp * k * math.cos(k * x)
-    if code == SAMPLED:
-        s0, ds, n = params[1], params[2], int(params[3])
-        pos = (s - s0) / ds
-        if pos <= 0.0 or pos >= n - 1:
-            return 0.0, 0.0
-        i = int(pos)
-        w = pos - i
-        slope = (samples[i + 1] - samples[i]) / ds
-        return samples[i] + w * (samples[i + 1] - samples[i]), slope
-    return 0.0, 0.0
+        params = [TrackInput.SAMPLED, excitation.s0, excitation.ds, len(samples)]
+        return np.array(params, dtype=np.float64), samples
+    return np.array([TrackInput.IDEAL, 0.0, 0.0, 0.0], dtype=np.float64), dummy

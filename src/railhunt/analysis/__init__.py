@@ -1,1 +1,4 @@
-"""Analyses built on the model: linear stability, critical speed."""
+"""Analyses built on the model: linear stability, critical speeds, limit cycles, frequency.
+
+Also the speed ramp, continuation of limit cycles, the stochastic criterion and spectrograms.
+"""

@@ -24,10 +24,19 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
+from railhunt.analysis.branches import (
+    HOPF_TYPES,
+    BifurcationDiagram,
+    Branch,
+    Fold,
+    classify_hopf,
+    make_branch,
+    on_branch,
+)
 from railhunt.analysis.linear import eigenvalues, hunting_mode_index, linear_critical_speed
 from railhunt.analysis.periodic import (
     MIN_STATE,
@@ -37,186 +46,15 @@ from railhunt.analysis.periodic import (
     Shooting,
     newton,
 )
-from railhunt.model import N_STATE, Y_W1, Model
+from railhunt.kernel.integrators import OK
+from railhunt.kernel.layout import N_STATE, WHEELSET_Y, Y_W1
+from railhunt.model import Model
+from railhunt.units import kmh_to_ms, ms_to_kmh
 from railhunt.vehicle import Vehicle
 
-HOPF_TYPES = ("subcritical", "supercritical-a", "supercritical-b")
 __all__ = ["HOPF_TYPES", "BifurcationDiagram", "Branch", "Fold", "bifurcation_diagram",
            "bifurcation_family",
            "classify_hopf"]
-
-
-@dataclass
-class Fold:
-    """A turning point of the branch in the speed."""
-
-    speed_kmh: float
-    amplitude: float  # m
-    index: int  # index of the nearest computed point
-
-
-@dataclass
-class Branch:
-    """One branch of limit cycles, in continuation order.
-
-    Attributes
-    ----------
-    speed_kmh, amplitude, period, stable : numpy.ndarray
-        Speed (km/h), amplitude of the leading wheelset's lateral displacement (m), period
-        (s) and stability (bool) of each orbit. A branch born at the Hopf point starts with
-        the Hopf point itself (amplitude 0, period from the eigenvalue).
-    max_multiplier : numpy.ndarray
-        Largest non-trivial Floquet multiplier modulus (NaN at the Hopf point).
-    wheelset_amplitudes : numpy.ndarray, shape (n, 4)
-        Amplitude of every wheelset (m).
-    origin : str
-        ``"hopf"`` (born at the Hopf point) or ``"simulation"`` (found from a simulated
-        large-amplitude cycle and followed both ways).
-    folds : list of Fold
-        Turning points in the speed.
-    """
-
-    speed_kmh: np.ndarray
-    amplitude: np.ndarray
-    period: np.ndarray
-    stable: np.ndarray
-    max_multiplier: np.ndarray
-    wheelset_amplitudes: np.ndarray
-    origin: str
-    folds: list[Fold]
-    orbits: list[PeriodicOrbit] = field(default_factory=list, repr=False)
-
-    @property
-    def frequency_hz(self) -> np.ndarray:
-        """Orbit frequencies ``1 / period`` (Hz)."""
-        return 1.0 / self.period
-
-    def segments(self) -> list[tuple[int, int, bool]]:
-        """Runs of equal stability as ``(first, last, stable)`` (inclusive, overlapping by one)."""
-        out = []
-        start = 0
-        st = self.stable
-        for i in range(1, st.size + 1):
-            if i == st.size or st[i] != st[start]:
-                out.append((start, min(i, st.size - 1), bool(st[start])))
-                start = i
-        return out
-
-    def speeds_at_amplitude(self, amplitude: float, stable: bool | None = False) -> list[float]:
-        """Speeds (km/h) where the branch crosses ``amplitude`` (m), linearly interpolated.
-
-        ``stable=False`` keeps crossings between two unstable orbits, ``True`` between two
-        stable ones, ``None`` all.
-        """
-        a, s, st = self.amplitude, self.speed_kmh, self.stable
-        out = []
-        for i in range(a.size - 1):
-            if (a[i] - amplitude) * (a[i + 1] - amplitude) > 0 or a[i] == a[i + 1]:
-                continue
-            if stable is not None and not (st[i] == stable and st[i + 1] == stable):
-                continue
-            w = (amplitude - a[i]) / (a[i + 1] - a[i])
-            out.append(float(s[i] + w * (s[i + 1] - s[i])))
-        return out
-
-    def to_dict(self) -> dict:
-        """JSON-ready arrays (km/h, m, s)."""
-        return {
-            "origin": self.origin,
-            "speed_kmh": self.speed_kmh.tolist(),
-            "amplitude": self.amplitude.tolist(),
-            "period": self.period.tolist(),
-            "stable": self.stable.tolist(),
-            "max_multiplier": [None if math.isnan(m) else m for m in self.max_multiplier],
-            "wheelset_amplitudes": self.wheelset_amplitudes.tolist(),
-            "folds": [{"speed_kmh": f.speed_kmh, "amplitude": f.amplitude} for f in self.folds],
-        }
-
-
-@dataclass
-class BifurcationDiagram:
-    """Limit-cycle branches of the vehicle versus speed, with the Hopf point and type.
-
-    Attributes
-    ----------
-    branches : list of Branch
-        ``branches[0]`` is born at the Hopf point; further branches were found from
-        simulated large-amplitude cycles that do not lie on an earlier branch.
-    hopf_speed_kmh : float
-        Linear critical speed (the Hopf point, from the eigenvalues).
-    hopf_speed_from_orbits_kmh : float
-        The Hopf speed found independently, by extrapolating the three smallest orbits of
-        the Hopf branch to zero amplitude (checks the continuation against the eigenvalues).
-    hopf_frequency_hz : float
-        Frequency of the hunting eigenvalue at the Hopf point (Hz).
-    fold_speed_kmh : float
-        Lowest speed with a limit cycle on any branch: the nonlinear critical speed. Equal
-        to the Hopf speed when no branch reaches below it; NaN when a branch leaves the
-        range downward (``fold_below_range``: the lowest cycle lies below the range).
-    hopf_type : str
-        One of ``"subcritical"``, ``"supercritical-a"``, ``"supercritical-b"`` (module
-        docstring).
-    speed_range_kmh : tuple of float
-        The range the continuation was confined to.
-    complete : bool
-        False when a branch stopped early (Newton failure at the smallest step, or the
-        point budget ran out).
-    message : str
-        Why each branch stopped.
-    fold_below_range : bool
-        True when a branch leaves the speed range downward.
-    """
-
-    branches: list[Branch]
-    hopf_speed_kmh: float
-    hopf_speed_from_orbits_kmh: float
-    hopf_frequency_hz: float
-    fold_speed_kmh: float
-    hopf_type: str
-    speed_range_kmh: tuple[float, float]
-    complete: bool
-    message: str
-    fold_below_range: bool = False
-
-    @property
-    def folds(self) -> list[Fold]:
-        """Every fold of every branch."""
-        return [f for b in self.branches for f in b.folds]
-
-    def speeds_at_amplitude(self, amplitude: float, stable: bool | None = False) -> list[float]:
-        """Crossings of ``amplitude`` (m) on all branches (km/h), sorted."""
-        return sorted(v for b in self.branches for v in b.speeds_at_amplitude(amplitude, stable))
-
-    def point_p_kmh(self, amplitude: float = 3e-3) -> float:
-        """The paper's point P: lowest speed where ``amplitude`` (m) meets an unstable branch.
-
-        Above it a disturbance of that amplitude of the leading wheelset grows to a large
-        limit cycle, below it decays (Fig. 7a). NaN when no unstable branch reaches it.
-        """
-        speeds = self.speeds_at_amplitude(amplitude, stable=False)
-        return speeds[0] if speeds else math.nan
-
-    def to_dict(self, point_p_amplitude: float = 3e-3) -> dict:
-        """JSON-ready summary (speeds in km/h, amplitudes in m, periods in s)."""
-        return {
-            "hopf_speed_kmh": self.hopf_speed_kmh,
-            "hopf_speed_from_orbits_kmh": self.hopf_speed_from_orbits_kmh,
-            "hopf_frequency_hz": self.hopf_frequency_hz,
-            "fold_speed_kmh": self.fold_speed_kmh,
-            "hopf_type": self.hopf_type,
-            "point_p": {"amplitude": point_p_amplitude,
-                        "speed_kmh": _none_if_nan(self.point_p_kmh(point_p_amplitude))},
-            "folds": [{"speed_kmh": f.speed_kmh, "amplitude": f.amplitude} for f in self.folds],
-            "speed_range_kmh": list(self.speed_range_kmh),
-            "fold_below_range": self.fold_below_range,
-            "complete": self.complete,
-            "message": self.message,
-            "branches": [b.to_dict() for b in self.branches],
-        }
-
-
-def _none_if_nan(x: float) -> float | None:
-    return None if math.isnan(x) else x
 
 
 def _check_range(speed_range_kmh: tuple[float, float]) -> tuple[float, float]:
@@ -235,7 +73,7 @@ def _check_range(speed_range_kmh: tuple[float, float]) -> tuple[float, float]:
 
 def _hopf_start(model: Model, hopf_kmh: float) -> tuple[np.ndarray, float]:
     """Hunting eigenvector normalised to y_w1 = 1 (real state shape) and the period (s)."""
-    w, vecs = eigenvalues(model, hopf_kmh / 3.6)
+    w, vecs = eigenvalues(model, kmh_to_ms(hopf_kmh))
     k = hunting_mode_index(w, vecs, model.vehicle.a)
     lam = w[k]
     if lam.imag < 0:
@@ -300,7 +138,7 @@ class _Tracer:
             tangent = self.null_vector(jac, tangent)
             ok = False
             while ds >= ds_min:
-                dv_kmh = abs(tangent[-1]) * Shooting.V_SCALE * 3.6
+                dv_kmh = ms_to_kmh(abs(tangent[-1]) * Shooting.V_SCALE)
                 da = abs(tangent[iy]) * STATE_SCALE[Y_W1]
                 ds = min(ds, ds_max, lim.max_step_kmh / max(dv_kmh, 1e-12),
                          lim.max_step_amplitude / max(da, 1e-12))  # fmt: skip
@@ -339,41 +177,6 @@ class _Tracer:
             if orbit.amplitude > lim.max_amplitude:
                 return orbits, f"amplitude above {lim.max_amplitude * 1e3:g} mm", True, False
         return orbits, f"used all its {budget} points (incomplete)", False, False
-
-
-def _make_branch(orbits: list[PeriodicOrbit], origin: str,
-                 hopf: tuple[float, float] | None = None) -> Branch:  # fmt: skip
-    """Arrays and folds of a branch; ``hopf = (speed_kmh, period)`` prepends the Hopf point."""
-    speed = [o.speed_kmh for o in orbits]
-    amp = [o.amplitude for o in orbits]
-    period = [o.period for o in orbits]
-    stable = [o.stable for o in orbits]
-    mmax = [o.max_multiplier for o in orbits]
-    wamp = [o.wheelset_amplitudes for o in orbits]
-    if hopf is not None:
-        speed.insert(0, hopf[0])
-        amp.insert(0, 0.0)
-        period.insert(0, hopf[1])
-        stable.insert(0, stable[0])
-        mmax.insert(0, math.nan)
-        wamp.insert(0, np.zeros(4))
-    speed_a = np.array(speed)
-    amp_a = np.array(amp)
-    folds = []
-    dv = np.diff(speed_a)
-    for i in range(1, dv.size):
-        if dv[i - 1] * dv[i] < 0:
-            # Parabola of speed against the distance along the branch in the (speed / 10
-            # km/h, amplitude / 1 mm) plane, through the three points around the turn.
-            seg = np.hypot(dv[i - 1:i + 1] / 10.0, np.diff(amp_a[i - 1:i + 2]) / 1e-3)
-            dist = np.array([-seg[0], 0.0, seg[1]])
-            c = np.polyfit(dist, speed_a[i - 1:i + 2], 2)
-            s_turn = float(np.clip(-c[1] / (2 * c[0]), dist[0], dist[2])) if c[0] != 0 else 0.0
-            v_turn = float(np.polyval(c, s_turn))
-            a_turn = float(np.interp(s_turn, dist, amp_a[i - 1:i + 2]))
-            folds.append(Fold(v_turn, a_turn, i))
-    return Branch(speed_a, amp_a, np.array(period), np.array(stable, dtype=bool),
-                  np.array(mmax), np.array(wamp), origin, folds, list(orbits))  # fmt: skip
 
 
 def bifurcation_diagram(
@@ -444,7 +247,7 @@ def bifurcation_diagram(
     if not math.isfinite(hopf):
         raise ValueError("the centred equilibrium stays stable up to 2000 km/h: no Hopf point")
     shape, period0 = _hopf_start(model, hopf)
-    shoot = Shooting(model, symmetric=symmetric, dt=dt, dt_speed=max(hi, hopf) / 3.6)
+    shoot = Shooting(model, symmetric=symmetric, dt=dt, dt_speed=kmh_to_ms(max(hi, hopf)))
     shoot.set_period_hint(period0)
     tracer = _Tracer(shoot, limits, on_point)
     iy = tracer.iy
@@ -452,7 +255,7 @@ def bifurcation_diagram(
     # 1. Three small orbits with y_w1(0) fixed (natural parameter), from the eigenvector.
     seeds = (5e-5, 1e-4, 2e-4)
     small: list[tuple[np.ndarray, PeriodicOrbit, tuple]] = []
-    u = shoot.pack(seeds[0] * shape, period0, hopf / 3.6)
+    u = shoot.pack(seeds[0] * shape, period0, kmh_to_ms(hopf))
     for n, eps in enumerate(seeds):
         target = eps / STATE_SCALE[Y_W1]
         if n >= 2:
@@ -486,7 +289,7 @@ def bifurcation_diagram(
     hopf_limits = dataclasses.replace(limits, lo=min(lo, hopf - 10.0), hi=max(hi, hopf + 10.0))
     more, msg, complete, below = tracer.trace(small[-1][0], small[-1][2], tangent / ds, ds,
                                               limits.max_points, hopf_limits)  # fmt: skip
-    branches = [_make_branch([o for _, o, _ in small] + more, "hopf", (hopf, period0))]
+    branches = [make_branch([o for _, o, _ in small] + more, "hopf", (hopf, period0))]
     messages = [f"Hopf branch: {msg}"]
 
     # 3. Branches of large cycles found by simulation: at the top of the range and, when
@@ -499,7 +302,7 @@ def bifurcation_diagram(
             if found is None:
                 continue
             u_c, orbit_c, lin_c = found
-            if any(_on_branch(b, orbit_c) for b in branches):
+            if any(on_branch(b, orbit_c) for b in branches):
                 continue
             if on_point is not None:
                 on_point(orbit_c)
@@ -517,7 +320,7 @@ def bifurcation_diagram(
                 below |= out_low
                 messages.append(f"branch from {amp * 1e3:g} mm at {seed_kmh:g} km/h "
                                 f"({'down' if sign < 0 else 'up'}): {msg}")  # fmt: skip
-            branches.append(_make_branch(parts[0][::-1] + [orbit_c] + parts[1], "simulation"))
+            branches.append(make_branch(parts[0][::-1] + [orbit_c] + parts[1], "simulation"))
             break
 
     hopf_type = classify_hopf(branches[0], hopf)
@@ -533,63 +336,17 @@ def bifurcation_diagram(
                               fold_below_range=below)  # fmt: skip
 
 
-def classify_hopf(branch: Branch, hopf_kmh: float, tol_kmh: float | None = None) -> str:
-    """Type of the Hopf bifurcation from the shape of its branch (the paper's Fig. 5).
-
-    ``"subcritical"`` when the branch falls more than ``tol_kmh`` below the Hopf speed
-    before it rises more than ``tol_kmh`` above it; otherwise ``"supercritical-a"`` when it
-    later turns back toward lower speeds by more than ``tol_kmh`` (a fold pair: small and
-    large cycles coexist), else ``"supercritical-b"``.
-
-    The tolerance (default ``max(2 km/h, 1 % of the Hopf speed)``) is needed because the
-    heuristic creep saturation (Eq. 28) reduces the creep forces in proportion to the
-    amplitude itself (``alpha = 1 - beta/3 + ...``), so the branch always starts toward
-    lower speeds, by ``O(amplitude)``: a dip of a km/h or two at sub-millimetre amplitude
-    that no excitation of engineering size can tell from a supercritical start.
-    """
-    tol = max(2.0, 0.01 * hopf_kmh) if tol_kmh is None else float(tol_kmh)
-    speed = branch.speed_kmh
-    below = np.flatnonzero(speed < hopf_kmh - tol)
-    above = np.flatnonzero(speed > hopf_kmh + tol)
-    if below.size and (not above.size or below[0] < above[0]):
-        return "subcritical"
-    if above.size:
-        running_max = np.maximum.accumulate(speed[above[0]:])
-        if np.any(running_max - speed[above[0]:] > tol):
-            return "supercritical-a"
-        return "supercritical-b"
-    # The branch never left the tolerance band (cut short): judge by where it ended.
-    return "subcritical" if speed[-1] < hopf_kmh else "supercritical-b"
-
-
-def _on_branch(branch: Branch, orbit: PeriodicOrbit, rel: float = 0.02) -> bool:
-    """True when ``orbit`` lies on ``branch`` (amplitude and period at its speed within ``rel``)."""
-    s, a, p = branch.speed_kmh, branch.amplitude, branch.period
-    for i in range(s.size - 1):
-        lo_s, hi_s = sorted((s[i], s[i + 1]))
-        if not lo_s <= orbit.speed_kmh <= hi_s or hi_s == lo_s:
-            continue
-        w = (orbit.speed_kmh - s[i]) / (s[i + 1] - s[i])
-        ai = a[i] + w * (a[i + 1] - a[i])
-        pi = p[i] + w * (p[i + 1] - p[i])
-        if abs(ai - orbit.amplitude) <= rel * orbit.amplitude and abs(pi - orbit.period) <= (
-            rel * orbit.period
-        ):
-            return True
-    return False
-
-
 def _seed_orbit(model: Model, shoot: Shooting, speed_kmh: float, amplitude: float):
     """Simulate from a displaced state, shoot from where it settles; None if it decays."""
     from railhunt.analysis.periodic import phase_origin
     from railhunt.simulation import auto_step, integrate_model
 
-    speed = speed_kmh / 3.6
+    speed = kmh_to_ms(speed_kmh)
     x0 = np.zeros(N_STATE)
-    x0[[9, 11, 13, 15]] = amplitude
+    x0[WHEELSET_Y] = amplitude
     dt = auto_step(model, speed)
     t, x, status, _ = integrate_model(model, speed, 12.0, x0, dt=dt)
-    if status != 0:
+    if status != OK:
         return None
     y = x[:, Y_W1]
     tail = y[t > t[-1] - 2.0]

@@ -18,9 +18,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from railhunt.analysis.search import bracket_and_bisect, check_search
-from railhunt.model import N_STATE, Y_W1, Model
+from railhunt.kernel.integrators import OK, STATUS_NAMES
+from railhunt.kernel.layout import N_STATE, Y_W1
+from railhunt.model import Model
 from railhunt.simulation import Y_LIMIT, auto_step, excitation_end_time, integrate_model
 from railhunt.track import SingleDefect
+from railhunt.units import kmh_to_ms
 from railhunt.vehicle import Vehicle
 
 STABLE, HUNTING = "stable", "hunting"
@@ -174,17 +177,17 @@ def run_until_verdict(
     Returns
     -------
     verdict : {"stable", "hunting"}
-        ``"hunting"`` also when the run left the track or diverged (``code != 0``).
+        ``"hunting"`` also when the run left the track or diverged (``code != OK``).
     t, x : numpy.ndarray
         The whole record: times (s) and states.
     code : int
-        Integrator status (0 ok, 1 derailed, 2 diverged, 3 step failed).
+        Integrator status (:data:`railhunt.kernel.integrators.STATUS_NAMES`).
     amplitude, growth_rate : float
         Final envelope of ``y_w1`` (m) and its log slope (1/s), as :func:`judge` gives them.
     decided : bool
         False when ``max_duration`` ran out and the envelope's trend decided.
     """
-    speed = speed_kmh / 3.6
+    speed = kmh_to_ms(speed_kmh)
     t_exc = excitation_end_time(model, excitation, speed)
     t0, x_start = 0.0, np.zeros(N_STATE) if x0 is None else np.asarray(x0, dtype=float)
     duration = t_exc + judgement.chunk
@@ -198,7 +201,7 @@ def run_until_verdict(
         ts.append(t if not ts else t[1:])
         xs.append(x if not xs else x[1:])
         tt, xx = np.concatenate(ts), np.concatenate(xs)
-        if code != 0:
+        if code != OK:
             return HUNTING, tt, xx, code, float(np.max(np.abs(xx[-50:, Y_W1]))), math.nan, True
         final = tt[-1] - t_exc >= judgement.max_duration - 1e-9
         verdict, amp, rate = judge(tt, xx[:, Y_W1], t_exc, judgement, final=final)
@@ -220,8 +223,7 @@ def run_trial(
     verdict, t, _, code, amp, rate, decided = run_until_verdict(
         model, speed_kmh, judgement, excitation, method=method, dt=dt, output_dt=output_dt
     )
-    status = {0: "ok", 1: "derailed", 2: "diverged", 3: "step-failed"}[code]
-    return Trial(speed_kmh, verdict, amp, rate, float(t[-1]), decided, status)
+    return Trial(speed_kmh, verdict, amp, rate, float(t[-1]), decided, STATUS_NAMES[code])
 
 
 def critical_speed(
@@ -281,7 +283,7 @@ def critical_speed(
         raise ValueError(f"dt = {dt!r} s is invalid: must be finite and in (0, 0.01] s")
 
     def verdict(speed_kmh: float) -> str:
-        step = dt if dt is not None else auto_step(model, speed_kmh / 3.6)
+        step = dt if dt is not None else auto_step(model, kmh_to_ms(speed_kmh))
         trial = run_trial(model, speed_kmh, excitation, judgement, method=method, dt=step)
         trials.append(trial)
         if progress is not None:

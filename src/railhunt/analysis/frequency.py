@@ -21,8 +21,10 @@ import numpy as np
 from railhunt.analysis.critical import HUNTING, STABLE, Judgement, run_until_verdict
 from railhunt.analysis.linear import eigen_analysis
 from railhunt.analysis.periodic import periodic_orbit, phase_origin
-from railhunt.model import N_STATE, WHEELSET_Y, Y_W1, Model
+from railhunt.kernel.layout import FORCES, N_DAMPER, N_STATE, WHEELSET_Y, Y_W1
+from railhunt.model import Model
 from railhunt.simulation import auto_step
+from railhunt.units import kmh_to_ms
 from railhunt.vehicle import Vehicle
 
 
@@ -190,7 +192,7 @@ def hunting_frequency(
     if not (math.isfinite(sample_rate) and sample_rate >= 20):
         raise ValueError(f"sample_rate = {sample_rate!r} Hz is invalid: must be >= 20 Hz")
     model = model or Model(vehicle, creep_law=creep_law)
-    speed = speed_kmh / 3.6
+    speed = kmh_to_ms(speed_kmh)
     # The least-damped wheelset mode at this speed: the oscillation a small disturbance
     # leaves (the paper's Fig. 10a trend of f falling with C_d1 above the jump). Followed
     # down from the Hopf point instead, the mode that goes unstable there is a different,
@@ -205,7 +207,7 @@ def hunting_frequency(
     verdict, t, x, code, _, _, _ = run_until_verdict(model, speed_kmh, judgement, excitation,
                                                      x0, dt=dt)  # fmt: skip
     y = x[:, Y_W1]
-    vd = model.damper_velocities(x[:, 34:38]) if x.size else np.empty((0, 4))
+    vd = model.damper_velocities(x[:, FORCES]) if x.size else np.empty((0, N_DAMPER))
     v_u = vehicle.F_u / vehicle.C_d1
     if verdict == STABLE:
         return HuntingFrequency(speed_kmh, f_eig, "eigenvalue", STABLE, 0.0, f_eig, zeta,

@@ -15,11 +15,10 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
-from railhunt.model import N_STATE, Model
+from railhunt.kernel.layout import BODY_Y, N_DOF, N_STATE, WHEELSET_PSI, WHEELSET_Y
+from railhunt.model import Model
+from railhunt.units import kmh_to_ms
 from railhunt.vehicle import Vehicle
-
-_WHEELSET_Y = np.arange(9, 17, 2)
-_WHEELSET_PSI = _WHEELSET_Y + 1
 
 
 @dataclass
@@ -94,15 +93,15 @@ def hunting_mode_index(w: np.ndarray, vecs: np.ndarray, a: float) -> int:
             continue
         if best_any < 0 or w[k].real > w[best_any].real:
             best_any = k
-        if _is_wheelset_mode(vecs[:17, k], a) and (best < 0 or w[k].real > w[best].real):
+        if _is_wheelset_mode(vecs[:N_DOF, k], a) and (best < 0 or w[k].real > w[best].real):
             best = k
     return best if best >= 0 else best_any
 
 
 def _is_wheelset_mode(q: np.ndarray, a: float) -> bool:
-    """True when the largest lateral amplitude of mode shape ``q`` (17 DOF) is a wheelset's."""
-    lateral = np.abs(q[[0, 3, 6]])
-    wheel = np.concatenate([np.abs(q[_WHEELSET_Y]), a * np.abs(q[_WHEELSET_PSI])])
+    """True when the largest lateral amplitude of mode shape ``q`` (coordinates) is a wheelset's."""
+    lateral = np.abs(q[BODY_Y])
+    wheel = np.concatenate([np.abs(q[WHEELSET_Y]), a * np.abs(q[WHEELSET_PSI])])
     return bool(wheel.max() >= lateral.max())
 
 
@@ -140,9 +139,9 @@ def eigen_analysis(
     shapes = []
     first_pick = np.empty(speeds.size, dtype=int)
     for i, s in enumerate(speeds):
-        w, vecs = eigenvalues(model, s / 3.6)
+        w, vecs = eigenvalues(model, kmh_to_ms(s))
         eig[i] = w
-        shapes.append(vecs[:17])
+        shapes.append(vecs[:N_DOF])
         first_pick[i] = hunting_mode_index(w, vecs, vehicle.a)
     # Seed: the speed at which the per-speed pick is least damped (ratio).
     picked = eig[np.arange(speeds.size), first_pick]
@@ -215,7 +214,7 @@ def linear_critical_speed(
     model = Model(vehicle, creep_law=creep_law, contact=contact)
 
     def growth(kmh: float) -> float:
-        return float(np.max(np.linalg.eigvals(model.jacobian(kmh / 3.6)).real))
+        return float(np.max(np.linalg.eigvals(model.jacobian(kmh_to_ms(kmh))).real))
 
     grid = np.unique(np.append(np.arange(min_kmh, max_kmh, scan_step_kmh), max_kmh))
     values = [growth(grid[0])]
@@ -237,7 +236,7 @@ def linear_critical_speed(
         if bracket is None:
             return LinearCriticalSpeed(math.nan, math.nan, complex(math.nan), False)
         speed = brentq(growth, *bracket, xtol=tol_kmh)
-    w, vecs = eigenvalues(model, speed / 3.6)
+    w, vecs = eigenvalues(model, kmh_to_ms(speed))
     k = int(np.argmax(w.real))
     if abs(w[k].imag) < 1e-9:
         is_hunting = False

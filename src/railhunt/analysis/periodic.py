@@ -14,16 +14,11 @@ orbit is then invariant under that symmetry with a half-period shift,
 eigenvalues of ``-M_half``. ``symmetric=False`` shoots over the whole period instead (for
 asymmetric vehicles or orbits).
 
-Non-smoothness. The yaw damper's two-stage law has a kink at ``|F_d| = F_u`` (blow-off);
-the vector field is continuous but its derivative jumps there. A fixed-step Runge-Kutta
-step across the kink is only first-order accurate and makes the discrete flow map
-non-smooth in ``x0``, which slows or stalls Newton. The integrator here (:func:`flow`)
-locates each crossing of ``|F_d| = F_u`` inside a step (regula falsi on the step
-fraction, to ``1e-9 F_u``), ends the step there and restarts on the other side, so every
-Runge-Kutta step sees a smooth vector field. The discrete flow map is then smooth in
-``x0``, ``T`` and the speed, Newton converges quadratically, and the answer converges at
-fourth order in the step (tests). Other kinks (contact angle limited to the flange angle,
-the heuristic saturation at ``beta = 3``, which is C1) are not located.
+Non-smoothness. The yaw damper's two-stage law has a kink at ``|F_d| = F_u`` (blow-off).
+The flow used here (:func:`railhunt.kernel.flow.flow`) locates each crossing inside a
+step and restarts there, so every Runge-Kutta step sees a smooth vector field. The
+discrete flow map is then smooth in ``x0``, ``T`` and the speed, Newton converges
+quadratically, and the answer converges at fourth order in the step (tests).
 """
 
 from __future__ import annotations
@@ -32,133 +27,23 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit
 
-from railhunt.integrate import rk4_step
-from railhunt.model import N_STATE, WHEELSET_Y, Y_W1, Model
+from railhunt.kernel.flow import flow
+from railhunt.kernel.layout import N_DAMPER, N_DOF, N_STATE, RATE0, WHEELSET_Y, Y_W1
+from railhunt.model import Model
 from railhunt.simulation import auto_step
+from railhunt.units import kmh_to_ms, ms_to_kmh
 
 #: Index of dy_w1/dt in the state vector: the phase condition fixes it to zero.
-PHASE_INDEX = 17 + Y_W1
-_N_Q = 17
-_F0 = 34
+PHASE_INDEX = RATE0 + Y_W1
 
 #: Natural scales of the states (m or rad, m/s or rad/s, N) for Newton and finite differences.
-STATE_SCALE = np.concatenate([np.full(17, 1e-3), np.full(17, 1e-2), np.full(4, 1e3)])
+STATE_SCALE = np.concatenate([np.full(N_DOF, 1e-3), np.full(N_DOF, 1e-2), np.full(N_DAMPER, 1e3)])
 #: Relative finite-difference step (times STATE_SCALE).
 FD_STEP = 1e-5
 #: Smallest largest scaled state entry of an orbit (1e-2: 10 micrometres or 0.1 mm/s);
 #: below it a solution of the shooting equations is the equilibrium, not a cycle.
 MIN_STATE = 1e-2
-
-
-@njit(cache=True)
-def flow(x0, horizon, n_steps, locate, v, lin, bd, dd, dpar, wr, trk, trs, samples):
-    """State after ``horizon`` seconds: RK4 on a uniform grid, damper switchings located.
-
-    Parameters
-    ----------
-    x0 : numpy.ndarray, shape (38,)
-        Initial state.
-    horizon : float
-        Integration time (s).
-    n_steps : int
-        Number of grid steps (step ``horizon / n_steps``).
-    locate : bool
-        End a step where a yaw damper force crosses ``|F| = F_u`` (see module docstring).
-    v, lin, bd, dd, dpar, wr, trk, trs
-        Model arguments (:meth:`railhunt.model.Model.args`).
-    samples : numpy.ndarray, shape (n_steps + 1, k)
-        Receives states ``0..k-1`` at every grid point (``k = 0`` for none).
-
-    Returns
-    -------
-    x : numpy.ndarray
-        State at ``t = horizon``.
-    n_switch : int
-        Number of located switchings.
-    """
-    n = x0.shape[0]
-    ns = samples.shape[1]
-    x = x0.copy()
-    xn = np.empty(n)
-    xt = np.empty(n)
-    k1 = np.empty(n)
-    k2 = np.empty(n)
-    k3 = np.empty(n)
-    k4 = np.empty(n)
-    tmp = np.empty(n)
-    h = horizon / n_steps
-    n_switch = 0
-    for j in range(ns):
-        samples[0, j] = x[j]
-    for step in range(n_steps):
-        t = step * h
-        remaining = h
-        sub = 0
-        while remaining > 1e-12 * h:
-            rk4_step(t, x, remaining, v, lin, bd, dd, dpar, wr, trk, trs,
-                     k1, k2, k3, k4, tmp, xn)  # fmt: skip
-            crossing = -1
-            theta = 1.0
-            b_hi = 1.0
-            b_shi = 0.0
-            if locate and sub < 16:  # after 16 switchings in one step: finish it plainly
-                for d in range(4):
-                    fu = dpar[d, 3]
-                    f0 = x[_F0 + d]
-                    f1 = xn[_F0 + d]
-                    s0 = abs(f0) - fu
-                    s1 = abs(f1) - fu
-                    if abs(s0) <= 1e-9 * fu:
-                        continue  # starts on the switching surface
-                    if s0 * s1 < 0.0:
-                        th, hi_d, shi_d = s0 / (s0 - s1), 1.0, s1
-                    elif s0 > 0.0 and s1 > 0.0 and f0 * f1 < 0.0:
-                        # Through the whole band |F| < F_u within the step (tiny F_u): the
-                        # first crossing lies before F = 0, where |F| - F_u = -F_u.
-                        hi_d = f0 / (f0 - f1)
-                        th, shi_d = hi_d * s0 / (s0 + fu), -fu
-                    else:
-                        continue
-                    if th < theta:
-                        theta, crossing, b_hi, b_shi = th, d, hi_d, shi_d
-            if crossing < 0:
-                for i in range(n):
-                    x[i] = xn[i]
-                break
-            # Regula falsi (Illinois) for the step fraction where |F| = F_u.
-            fu = dpar[crossing, 3]
-            lo, slo = 0.0, abs(x[_F0 + crossing]) - fu
-            hi, shi = b_hi, b_shi
-            th = theta
-            side = 0
-            for it in range(30):
-                rk4_step(t, x, th * remaining, v, lin, bd, dd, dpar, wr, trk, trs,
-                         k1, k2, k3, k4, tmp, xt)  # fmt: skip
-                st = abs(xt[_F0 + crossing]) - fu
-                if abs(st) <= 1e-9 * fu or it == 29:
-                    break  # th is the fraction xt was computed with
-                if st * slo < 0.0:
-                    hi, shi = th, st
-                    if side == -1:
-                        slo *= 0.5
-                    side = -1
-                else:
-                    lo, slo = th, st
-                    if side == 1:
-                        shi *= 0.5
-                    side = 1
-                th = lo + (hi - lo) * slo / (slo - shi)
-            for i in range(n):
-                x[i] = xt[i]
-            n_switch += 1
-            sub += 1
-            t += th * remaining
-            remaining *= 1.0 - th
-        for j in range(ns):
-            samples[step + 1, j] = x[j]
-    return x, n_switch
 
 
 @dataclass
@@ -206,7 +91,7 @@ class PeriodicOrbit:
     @property
     def speed_kmh(self) -> float:
         """Forward speed (km/h)."""
-        return self.speed * 3.6
+        return ms_to_kmh(self.speed)
 
     @property
     def frequency_hz(self) -> float:
@@ -289,7 +174,7 @@ class Shooting:
         horizon = period / 2 if self.symmetric else period
         smp = self._no_samples if samples is None else samples
         x, _ = flow(np.ascontiguousarray(x0, dtype=np.float64), horizon, self.n_steps,
-                    self.locate, *self.model.args(speed), smp)  # fmt: skip
+                    self.locate, speed, self.model.system(), smp)  # fmt: skip
         return x
 
     def _residual_state(self, x0: np.ndarray, period: float, speed: float) -> np.ndarray:
@@ -462,7 +347,7 @@ def periodic_orbit(
     """
     model = vehicle_or_model if isinstance(vehicle_or_model, Model) else Model(
         vehicle_or_model, creep_law=creep_law)
-    speed = speed_kmh / 3.6
+    speed = kmh_to_ms(speed_kmh)
     if not (math.isfinite(period) and period > 0):
         raise ValueError(f"period = {period!r} s is invalid: must be finite and > 0")
     shoot = Shooting(model, symmetric=symmetric, dt=dt, dt_speed=speed)

@@ -18,8 +18,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from railhunt.model import N_STATE, WHEELSET_Y, Y_W1, Model
+from railhunt.kernel.integrators import OK
+from railhunt.kernel.layout import N_STATE, WHEELSET_Y, Y_W1
+from railhunt.model import Model
 from railhunt.simulation import Y_LIMIT, auto_step, integrate_model
+from railhunt.units import kmh_to_ms
 from railhunt.vehicle import Vehicle
 
 
@@ -92,11 +95,11 @@ def critical_speed_ramp(
         raise ValueError(f"end_kmh = {end_kmh} km/h is invalid: must be below start_kmh = "
                          f"{start_kmh} km/h")  # fmt: skip
     model = Model(vehicle, creep_law=creep_law)
-    dt = auto_step(model, start_kmh / 3.6)
+    dt = auto_step(model, kmh_to_ms(start_kmh))
     x = np.zeros(N_STATE)
     x[WHEELSET_Y] = initial_amplitude
-    t, xs, code, _ = integrate_model(model, start_kmh / 3.6, 15.0, x, dt=dt, y_limit=Y_LIMIT)
-    if code != 0:
+    t, xs, code, _ = integrate_model(model, kmh_to_ms(start_kmh), 15.0, x, dt=dt, y_limit=Y_LIMIT)
+    if code != OK:
         raise RuntimeError(f"the start run at {start_kmh} km/h failed (status {code})")
     tail = np.abs(xs[t >= t[-1] - 2.0, Y_W1])
     a0 = float(tail.max())
@@ -127,8 +130,8 @@ def _staircase(model: Model, dt: float, x: np.ndarray, start_kmh: float, end_kmh
     v = start_kmh
     while v - step >= end_kmh - 1e-9:
         v -= step
-        t, xs, code, _ = integrate_model(model, v / 3.6, seg, x, dt=dt, y_limit=Y_LIMIT)
-        if code != 0:
+        t, xs, code, _ = integrate_model(model, kmh_to_ms(v), seg, x, dt=dt, y_limit=Y_LIMIT)
+        if code != OK:
             raise RuntimeError(f"the ramp failed at {v:.2f} km/h (status {code})")
         x = xs[-1].copy()
         a = float(np.max(np.abs(xs[:, Y_W1])))

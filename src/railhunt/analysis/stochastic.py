@@ -45,6 +45,7 @@ from railhunt.irregularity import TrackIrregularity, track_irregularity
 from railhunt.model import Model
 from railhunt.simulation import SimulationResult, simulate
 from railhunt.track import SampledTrack
+from railhunt.units import kmh_to_ms
 from railhunt.vehicle import Vehicle
 
 #: Length of the sliding rms window and its step (m), EN 14363.
@@ -281,7 +282,7 @@ def run_on_track(
     seconds (2 ms: 250 Hz, far above the pass band).
     """
     model = model or Model(vehicle)
-    speed = speed_kmh / 3.6
+    speed = kmh_to_ms(speed_kmh)
     check_track_length(track, model)
     duration = (track.end() + model.wheelset_offsets()[-1]) / speed
     res = simulate(

@@ -1,4 +1,8 @@
-"""The paper's polynomial contact geometry (Eqs. 32-33), wheel by wheel.
+"""The paper's polynomial contact geometry (Eqs. 32-33): coefficients consistent with it.
+
+The polynomials themselves are evaluated in the compiled kernel
+(:func:`railhunt.kernel.contact.rolling_radius`, :func:`~railhunt.kernel.contact.contact_angle`,
+re-exported here).
 
 Each wheel is described as a function of ``u``, its lateral displacement toward its own
 flange (m): ``u = +y`` for the left wheel and ``u = -y`` for the right wheel when the
@@ -13,36 +17,9 @@ used here unchanged with ``u = -y_paper``:
 
 from __future__ import annotations
 
-from numba import njit
+from railhunt.kernel.contact import contact_angle, rolling_radius
 
-
-@njit(cache=True)
-def rolling_radius(
-    u: float, r0: float, l1: float, l2: float, l3: float, l4: float, l5: float
-) -> float:
-    """Rolling radius of a wheel displaced ``u`` toward its flange (Eq. 32), m.
-
-    ``r = r0 + l1*u + l2*u**2 + l3*u**3 + l4*u**4 + l5*u**5``.
-    """
-    return r0 + u * (l1 + u * (l2 + u * (l3 + u * (l4 + u * l5))))
-
-
-@njit(cache=True)
-def contact_angle(
-    u: float, d0: float, d1: float, d4: float, d5: float, delta_max: float
-) -> float:
-    """Contact angle of a wheel displaced ``u`` toward its flange (Eq. 33), rad.
-
-    ``delta = d0 - d1*u + d4*u**4 - d5*u**5`` (the paper's coefficients with its sign of
-    the lateral coordinate), limited to ``[-delta_max, delta_max]``.
-    """
-    u2 = u * u
-    d = d0 - d1 * u + u2 * u2 * (d4 - d5 * u)
-    if d > delta_max:
-        return delta_max
-    if d < -delta_max:
-        return -delta_max
-    return d
+__all__ = ["contact_angle", "radius_coefficients_from_contact_angle", "rolling_radius"]
 
 
 def radius_coefficients_from_contact_angle(

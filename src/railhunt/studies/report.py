@@ -1,4 +1,4 @@
-"""Self-contained HTML report of a reproduction run (:func:`railhunt.studies.reproduce`).
+"""Self-contained HTML report of a reproduction run (:func:`railhunt.reproduce`).
 
 One HTML file with everything inside: the figures as base64 ``data:`` URIs, the style
 sheet inline, no scripts and no links to anything outside, so it opens in a browser with
@@ -14,14 +14,15 @@ import os
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from railhunt.paper2019 import citation
+
 if TYPE_CHECKING:
-    from railhunt.studies.reproduce import Headline, Report, Step
+    from railhunt.studies.records import Headline, Report, Step
 
 __all__ = ["PAPER", "build_html", "data_uri", "headline_table", "write_html"]
 
-#: The paper the report reproduces (as cited in docs/model.md).
-PAPER = ("Numerical Investigation into the Critical Speed and Frequency of the Hunting Motion "
-         "in Railway Vehicle System (Mathematical Problems in Engineering, 2019)")  # fmt: skip
+#: The paper the report reproduces (as cited in docs/model.md; railhunt.paper2019.CITATION).
+PAPER = citation()
 
 _CSS = """
 body { font-family: system-ui, -apple-system, "Segoe UI", Roboto, sans-serif; margin: 2em auto;

@@ -1,12 +1,20 @@
-"""The paper's Table 1 sections and the change of V_cr and f per section (its Fig. 12).
+"""The change of V_cr and f per Table 1 section of each parameter (the paper's Fig. 12).
 
 Table 1 of the paper divides the range of each of seven parameters (C_d1, K_d, C_d2, mu,
 K_px, f11 = f22, C_sy) into three sections; Fig. 12 compares, per parameter and per
 section, the change of the nonlinear critical speed (ΔV_cr) and of the hunting frequency
-(Δf) over the section. The table ships as ``railhunt/data/table1.toml``;
-:func:`load_table1` reads it, :func:`table1_values` gives sweep values covering it and
-:func:`section_changes` computes ΔV_cr and Δf from the one-parameter lines of a results
-file (see :func:`railhunt.sweep`).
+(Δf) over the section. :func:`section_changes` computes ΔV_cr and Δf from the
+one-parameter lines of a results file (see :func:`railhunt.sweep`).
+
+The study is split by theme; this module re-exports the names of the other two, so that
+``railhunt.studies.sections`` keeps offering all of them:
+
+- the table is the paper's: :func:`load_table1`, :class:`Table1Parameter`
+  (:mod:`railhunt.paper2019.table1`, shipped as ``railhunt/paper2019/table1.toml``);
+- the study's sweep values: :func:`table1_values`, :func:`table1_study`
+  (:mod:`railhunt.studies.table1_design`);
+- the lines of a results file: :func:`result_rows`, :func:`sweep_lines`,
+  :func:`sweep_line`, :class:`SweepLine` (:mod:`railhunt.studies.lines`).
 
 Definitions (the paper only says "the change within the range"):
 
@@ -28,20 +36,26 @@ Values are SI inside (N*s/m, N/m, N, -); display units (kN*s/m, MN/m, MN) only i
 
 from __future__ import annotations
 
-import functools
 import math
-import os
-import tomllib
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
-from importlib import resources
-from pathlib import Path
-from types import MappingProxyType
 from typing import Any
 
 import numpy as np
 
-from railhunt.studies.design import DESIGNS
+from railhunt.paper2019.table1 import Table1Parameter, load_table1
+from railhunt.studies.lines import (
+    FREQUENCY_COLUMN,
+    MULTI_PARAMETER_DESIGNS,
+    SOURCE_COLUMN,
+    SPEED_COLUMN,
+    SweepLine,
+    result_rows,
+    sweep_line,
+    sweep_lines,
+)
+from railhunt.studies.lines import FREQUENCY_SPEED_COLUMN as FREQUENCY_SPEED_COLUMN
+from railhunt.studies.table1_design import table1_study, table1_values
 
 __all__ = [
     "MULTI_PARAMETER_DESIGNS",
@@ -55,16 +69,10 @@ __all__ = [
     "section_changes",
     "sweep_line",
     "sweep_lines",
+    "table1_study",
     "table1_values",
 ]
 
-#: Values of the ``line`` column of designs that are not one-parameter lines.
-MULTI_PARAMETER_DESIGNS = tuple(d for d in DESIGNS if d != "lines")
-#: Results columns read here (see the results-file schema of :func:`railhunt.sweep`).
-SPEED_COLUMN = "critical_speed_kmh"
-FREQUENCY_COLUMN = "hunting_frequency_hz"
-SOURCE_COLUMN = "frequency_source"
-FREQUENCY_SPEED_COLUMN = "frequency_speed_kmh"
 #: Relative tolerance for "a point lies on a section boundary / covers the section".
 _REL_TOL = 1e-9
 
@@ -75,352 +83,6 @@ DEFINITION = (
     "frequency, an increment between neighbours whose frequency source differs (the jump) "
     "removed. Points without a number are skipped."
 )
-
-
-# --------------------------------------------------------------------------- Table 1
-
-
-@dataclass(frozen=True)
-class Table1Parameter:
-    """One parameter of the paper's Table 1.
-
-    Attributes
-    ----------
-    name : str
-        Vehicle parameter name (``"C_d1"``, ``"K_d"``, ``"C_d2"``, ``"mu"``, ``"K_px"``,
-        ``"f11"``, ``"C_sy"``).
-    meaning : str
-        What the parameter is.
-    unit : str
-        Display unit (``"kN*s/m"``, ``"MN/m"``, ``"MN"``, ``"-"``).
-    scale : float
-        Size of one display unit in SI: ``SI value = display value * scale``.
-    boundaries : tuple of float
-        The four section boundaries in SI units; section ``k`` (1-based) runs from
-        ``boundaries[k - 1]`` to ``boundaries[k]``.
-    figure : str
-        The panel of the paper that sweeps it (``"10a"`` ... ``"11d"``).
-    frequency_speed_kmh : float
-        Speed at which the paper computes the hunting frequency (km/h): 300 for the yaw
-        damper parameters (Fig. 10), 350 for the others (Fig. 11).
-    ties : tuple of str
-        Parameters set equal to this one at every point (``("f22",)`` for f11).
-    paper_boundaries : tuple of float or None
-        The boundaries as printed in the paper (display unit), where railhunt departs
-        from them (C_d2: the paper's 0 is 1 kN*s/m here); None otherwise.
-    note : str
-        Why railhunt departs from the paper ("" when it does not).
-    """
-
-    name: str
-    meaning: str
-    unit: str
-    scale: float
-    boundaries: tuple[float, ...]
-    figure: str
-    frequency_speed_kmh: float
-    ties: tuple[str, ...] = ()
-    paper_boundaries: tuple[float, ...] | None = None
-    note: str = ""
-
-    @property
-    def sections(self) -> tuple[tuple[float, float], ...]:
-        """The three sections ``(lower, upper)`` in SI units."""
-        b = self.boundaries
-        return tuple((b[k], b[k + 1]) for k in range(len(b) - 1))
-
-    @property
-    def display_boundaries(self) -> tuple[float, ...]:
-        """The section boundaries in the display unit."""
-        return tuple(float(f"{v / self.scale:.12g}") for v in self.boundaries)
-
-    @property
-    def label(self) -> str:
-        """Axis label: the name with its ties and the display unit, e.g. ``f11 = f22 (MN)``."""
-        name = " = ".join((self.name, *self.ties))
-        return name if self.unit == "-" else f"{name} ({self.unit})"
-
-
-@functools.cache
-def load_table1() -> Mapping[str, Table1Parameter]:
-    """The paper's Table 1 as shipped in ``railhunt/data/table1.toml``.
-
-    Returns
-    -------
-    Mapping[str, Table1Parameter]
-        Read-only mapping from parameter name to its entry, in the paper's order
-        (C_d1, K_d, C_d2, mu, K_px, f11, C_sy). Boundaries in SI units.
-    """
-    ref = resources.files("railhunt") / "data" / "table1.toml"
-    data = tomllib.loads(ref.read_text(encoding="utf-8"))
-    return MappingProxyType({name: _parse_entry(name, entry) for name, entry in data.items()})
-
-
-def _parse_entry(name: str, entry: Mapping[str, Any]) -> Table1Parameter:
-    """Check one Table 1 entry against the vehicle's parameters and convert it to SI."""
-    from railhunt.vehicle import PARAMETERS, validate_value
-
-    def bad(why: str) -> RuntimeError:
-        return RuntimeError(f"railhunt installation error: table1.toml [{name}]: {why}")
-
-    if name not in PARAMETERS:
-        raise bad("not a vehicle parameter")
-    scale = float(entry["scale"])
-    shown = [float(v) for v in entry["boundaries"]]
-    if len(shown) != 4 or any(b <= a for a, b in zip(shown, shown[1:], strict=False)):
-        raise bad(f"boundaries {shown} must be 4 increasing numbers")
-    boundaries = tuple(float(f"{v * scale:.12g}") for v in shown)
-    for value in boundaries:
-        try:
-            validate_value(name, value)
-        except ValueError as exc:
-            raise bad(str(exc)) from None
-    ties = tuple(entry.get("ties", ()))
-    for tied in ties:
-        if tied not in PARAMETERS:
-            raise bad(f"tied parameter {tied!r} is not a vehicle parameter")
-    paper = entry.get("paper_boundaries")
-    return Table1Parameter(
-        name=name,
-        meaning=str(entry["meaning"]),
-        unit=str(entry["unit"]),
-        scale=scale,
-        boundaries=boundaries,
-        figure=str(entry["figure"]),
-        frequency_speed_kmh=float(entry["frequency_speed_kmh"]),
-        ties=ties,
-        paper_boundaries=None if paper is None else tuple(float(v) for v in paper),
-        note=" ".join(str(entry.get("note", "")).split()),
-    )
-
-
-def _table_entry(name: str, table: Mapping[str, Table1Parameter]) -> Table1Parameter:
-    if name in table:
-        return table[name]
-    for entry in table.values():
-        if name in entry.ties:
-            raise ValueError(f"{name!r} follows {entry.name!r} in Table 1; use {entry.name!r}")
-    raise ValueError(f"{name!r} is not a Table 1 parameter (valid: {', '.join(table)})")
-
-
-def table1_values(
-    name: str,
-    points_per_section: int = 5,
-    table: Mapping[str, Table1Parameter] | None = None,
-) -> np.ndarray:
-    """Evenly spaced sweep values covering a parameter's three Table 1 sections.
-
-    Parameters
-    ----------
-    name : str
-        Table 1 parameter (``"C_d1"``, ``"K_d"``, ``"C_d2"``, ``"mu"``, ``"K_px"``,
-        ``"f11"``, ``"C_sy"``).
-    points_per_section : int
-        Points per section, both ends included (at least 2). Neighbouring sections share
-        their boundary, so the result has ``3 * (points_per_section - 1) + 1`` values.
-    table : Mapping[str, Table1Parameter], optional
-        Another table (default: :func:`load_table1`).
-
-    Returns
-    -------
-    numpy.ndarray
-        Ascending values in SI units, every section boundary included exactly once.
-    """
-    entry = _table_entry(name, load_table1() if table is None else table)
-    n = int(points_per_section)
-    if n != points_per_section or n < 2:
-        raise ValueError(
-            f"points_per_section = {points_per_section!r} is invalid: must be an integer >= 2 "
-            "(each section's two ends)"
-        )
-    parts = [np.linspace(lo, hi, n) for lo, hi in entry.sections]
-    return np.concatenate([parts[0], *(part[1:] for part in parts[1:])])
-
-
-def table1_study(
-    points_per_section: int = 5,
-    names: Sequence[str] | None = None,
-) -> tuple[dict[str, np.ndarray], dict[str, str]]:
-    """The paper's parameter study: every Table 1 parameter over its three sections.
-
-    Parameters
-    ----------
-    points_per_section : int
-        Points per section, both ends included (see :func:`table1_values`).
-    names : sequence of str, optional
-        A subset of the Table 1 parameters (default: all seven, in the paper's order).
-
-    Returns
-    -------
-    parameters : dict
-        Name -> SI values, for ``railhunt.sweep(vehicle, parameters, ties=ties)`` with the
-        default ``design="lines"``.
-    ties : dict
-        Follower -> leader (``{"f22": "f11"}``: the paper sets f22 = f11).
-    """
-    table = load_table1()
-    chosen = list(table) if names is None else [_table_entry(n, table).name for n in names]
-    parameters = {n: table1_values(n, points_per_section, table) for n in chosen}
-    ties = {follower: n for n in chosen for follower in table[n].ties}
-    return parameters, ties
-
-
-# --------------------------------------------------------------------------- results
-
-
-def result_rows(results: Any) -> list[dict[str, Any]]:
-    """The rows of a results file as dicts (one per sweep point, sorted by point).
-
-    Parameters
-    ----------
-    results : str, os.PathLike, SweepResults or sequence of dict
-        A results file (CSV, or Parquet where the store supports it), an object with a
-        ``rows`` attribute (:class:`railhunt.studies.store.SweepResults`), or the rows.
-
-    Returns
-    -------
-    list of dict
-        Column name to value: ``point`` int; ``line``, ``status``, ``frequency_source``,
-        ``message`` str; every other column float (SI units, speeds km/h, Hz).
-    """
-    if isinstance(results, str | os.PathLike):
-        rows = _read_results(Path(results))
-    else:
-        rows = [dict(row) for row in getattr(results, "rows", results)]
-    return sorted(rows, key=lambda row: int(row.get("point", 0)))
-
-
-def _read_results(path: Path) -> list[dict[str, Any]]:
-    """Rows of a results file (:func:`railhunt.studies.store.read_results`)."""
-    from railhunt.studies.store import read_results
-
-    return [dict(row) for row in read_results(path).rows]
-
-
-@dataclass(frozen=True)
-class SweepLine:
-    """The points of one one-parameter line of a sweep, in ascending parameter value.
-
-    Attributes
-    ----------
-    parameter : str
-        The swept parameter.
-    values : numpy.ndarray
-        Its values (SI units), ascending.
-    critical_speed_kmh : numpy.ndarray
-        Nonlinear critical speed (km/h); NaN where not found or not computed.
-    frequency_hz : numpy.ndarray
-        Hunting frequency (Hz); NaN where not found or not computed.
-    frequency_source : tuple of str
-        ``"eigenvalue"``, ``"limit-cycle"`` or ``"limit-exceeded"`` per point ("" if none).
-    status : tuple of str
-        Each point's status (``"ok"``, ``"no-critical-speed"``, ``"failed"``).
-    points : tuple of int
-        Each point's index in the sweep.
-    frequency_speed_kmh : float
-        Speed at which the frequencies were computed (km/h); NaN if not in the file.
-    columns : frozenset of str
-        The output columns present in the results.
-    """
-
-    parameter: str
-    values: np.ndarray
-    critical_speed_kmh: np.ndarray
-    frequency_hz: np.ndarray
-    frequency_source: tuple[str, ...]
-    status: tuple[str, ...]
-    points: tuple[int, ...]
-    frequency_speed_kmh: float
-    columns: frozenset[str]
-
-    def jumps(self) -> list[int]:
-        """Indices ``i`` where points ``i`` and ``i + 1`` (with frequencies) change source.
-
-        NaN frequencies are skipped, so ``i + 1`` is the next point with a frequency.
-        """
-        idx = np.flatnonzero(np.isfinite(self.frequency_hz))
-        return [
-            int(a)
-            for a, b in zip(idx, idx[1:], strict=False)
-            if self.frequency_source[a] != self.frequency_source[b]
-        ]
-
-
-def sweep_lines(results: Any) -> dict[str, SweepLine]:
-    """Every one-parameter line of a sweep's results.
-
-    Parameters
-    ----------
-    results : str, os.PathLike, SweepResults or sequence of dict
-        See :func:`result_rows`.
-
-    Returns
-    -------
-    dict
-        Line name (the swept parameter) to :class:`SweepLine`, in order of first appearance.
-
-    Raises
-    ------
-    ValueError
-        The results are empty, or hold a grid / random / Latin-hypercube design (not
-        one-parameter lines), or a line's parameter has no column.
-    """
-    rows = result_rows(results)
-    if not rows:
-        raise ValueError("the results hold no points")
-    names = list(dict.fromkeys(str(row.get("line", "")) for row in rows))
-    designs = [n for n in names if n in MULTI_PARAMETER_DESIGNS]
-    if designs:
-        raise ValueError(
-            f"the results hold a {designs[0]!r} design (several parameters varied at once); "
-            "sections and Figs. 10/11 need one-parameter-at-a-time lines (design 'lines')"
-        )
-    columns = frozenset().union(*(row.keys() for row in rows))
-    out = {}
-    for name in names:
-        if name not in columns:
-            raise ValueError(f"line {name!r} has no column of parameter values")
-        out[name] = _make_line(name, [row for row in rows if row.get("line") == name], columns)
-    return out
-
-
-def sweep_line(results: Any, name: str) -> SweepLine:
-    """One one-parameter line of a sweep's results (see :func:`sweep_lines`)."""
-    lines = sweep_lines(results)
-    if name not in lines:
-        raise ValueError(f"no line {name!r} in the results (lines: {', '.join(lines)})")
-    return lines[name]
-
-
-def _make_line(name: str, rows: list[dict[str, Any]], columns: frozenset[str]) -> SweepLine:
-    def floats(key: str) -> np.ndarray:
-        return np.array([_as_float(row.get(key)) for row in rows], dtype=float)
-
-    values = floats(name)
-    order = np.argsort(values, kind="stable")
-    rows = [rows[i] for i in order]
-    speeds = {_as_float(row.get(FREQUENCY_SPEED_COLUMN)) for row in rows}
-    speeds = {s for s in speeds if math.isfinite(s)}
-    return SweepLine(
-        parameter=name,
-        values=values[order],
-        critical_speed_kmh=floats(SPEED_COLUMN),
-        frequency_hz=floats(FREQUENCY_COLUMN),
-        frequency_source=tuple(str(row.get(SOURCE_COLUMN) or "") for row in rows),
-        status=tuple(str(row.get("status") or "") for row in rows),
-        points=tuple(int(row.get("point", k)) for k, row in enumerate(rows)),
-        frequency_speed_kmh=speeds.pop() if len(speeds) == 1 else math.nan,
-        columns=columns,
-    )
-
-
-def _as_float(value: Any) -> float:
-    if value is None or value == "":
-        return math.nan
-    try:
-        return float(value)
-    except (TypeError, ValueError):
-        return math.nan
 
 
 # --------------------------------------------------------------------------- sections

@@ -1,62 +1,94 @@
-"""Time integrators for the vehicle model: fixed-step RK4 and adaptive Dormand-Prince 5(4).
+"""Time integrators beside the right-hand side: fixed-step RK4 and adaptive DOPRI5.
 
-Both call :func:`railhunt.model.rhs` directly (compiled together, no Python in the loop),
-stop cleanly when the run diverges, and report a status code:
+Both call :func:`railhunt.kernel.rhs.rhs` directly (compiled together, no Python in the
+loop), stop cleanly when the run leaves the track or diverges, and report a status code
+(:data:`STATUS_NAMES`, :data:`MESSAGES`). They are chosen by name from :data:`METHODS`
+(as ``scipy.integrate.solve_ivp`` chooses its solvers), each entry a function with one
+signature::
 
-* ``OK`` (0): reached the end time;
-* ``DERAILED`` (1): a wheelset left the rails laterally by more than ``y_limit``;
-* ``DIVERGED`` (2): a state became NaN or infinite;
-* ``STEP_FAILED`` (3): the adaptive step size fell below its minimum.
+    METHODS[name](x0, t0, duration, v, s, *, dt, output_dt, rtol, atol, y_limit)
+        -> (t, x, status, stats)
+
+The switching-aware flow used for shooting lives in :mod:`railhunt.kernel.flow`.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 from numba import njit
 
-from railhunt import track as _track
-from railhunt.model import WR_OFFSET, rhs
+from railhunt.kernel.layout import SystemArrays
+from railhunt.kernel.rhs import rhs
+from railhunt.kernel.track import alignment
 
+#: Status codes of a run.
 OK, DERAILED, DIVERGED, STEP_FAILED = 0, 1, 2, 3
+#: Status code -> name (as results and JSON report it).
 STATUS_NAMES = {OK: "ok", DERAILED: "derailed", DIVERGED: "diverged", STEP_FAILED: "step-failed"}
+#: Status code -> how a run with that status ended (``t``: end time in s, ``y_limit_mm``:
+#: the derailment limit in mm).
+MESSAGES = {
+    OK: "reached t = {t:.3f} s",
+    DERAILED: "stopped at t = {t:.3f} s: a wheelset moved more than {y_limit_mm:.1f} mm from "
+              "the track centre line",
+    DIVERGED: "stopped at t = {t:.3f} s: the state became non-finite",
+    STEP_FAILED: "stopped at t = {t:.3f} s: step size underflow",
+}  # fmt: skip
+
+
+def status_message(code: int, t_end: float, y_limit: float) -> str:
+    """How a run ended, in words (``t_end`` in s, ``y_limit`` in m)."""
+    return MESSAGES[code].format(t=t_end, y_limit_mm=y_limit * 1e3)
+
+
+def default_atol(n_dof: int, n_damper: int) -> np.ndarray:
+    """Absolute tolerances per state for the adaptive integrator (state units).
+
+    1e-8 m (or rad) on the coordinates, 1e-7 m/s on the rates, 1e-3 N on damper forces.
+    """
+    return np.concatenate([np.full(n_dof, 1e-8), np.full(n_dof, 1e-7), np.full(n_damper, 1e-3)])
 
 
 @njit(cache=True)
-def _check_state(t, x, y_limit, v, wr, trk, trs) -> int:
+def check_state(t: float, x: np.ndarray, y_limit: float, v: float, s: SystemArrays) -> int:
+    """Status of state ``x`` at time ``t``: DIVERGED if non-finite, DERAILED if a wheelset
+    is more than ``y_limit`` (m) off the rails laterally, else OK."""
     for i in range(x.shape[0]):
         if not np.isfinite(x[i]):
             return DIVERGED
-    for j in range(4):
-        yr, _ = _track.alignment(v * t - wr[WR_OFFSET + j], trk, trs)
-        if abs(x[9 + 2 * j] - yr) > y_limit:
+    for j in range(s.wheelsets.shape[0]):
+        yr, _ = alignment(v * t - s.wheelset_delay[j], s.track, s.track_samples)
+        if abs(x[s.wheelsets[j, 0]] - yr) > y_limit:
             return DERAILED
     return OK
 
 
 @njit(cache=True)
-def rk4_step(t, x, h, v, lin, bd, dd, dpar, wr, trk, trs, k1, k2, k3, k4, tmp, out):
+def rk4_step(t, x, h, v, s, k1, k2, k3, k4, tmp, out):
     """One classical Runge-Kutta step of size ``h`` from ``(t, x)`` into ``out``.
 
     ``k1 .. k4`` and ``tmp`` are work arrays of the state's size; ``out`` may be ``x``
     itself (the update is elementwise after all stages are computed).
     """
     n = x.shape[0]
-    rhs(t, x, v, lin, bd, dd, dpar, wr, trk, trs, k1)
+    rhs(t, x, v, s, k1)
     for i in range(n):
         tmp[i] = x[i] + 0.5 * h * k1[i]
-    rhs(t + 0.5 * h, tmp, v, lin, bd, dd, dpar, wr, trk, trs, k2)
+    rhs(t + 0.5 * h, tmp, v, s, k2)
     for i in range(n):
         tmp[i] = x[i] + 0.5 * h * k2[i]
-    rhs(t + 0.5 * h, tmp, v, lin, bd, dd, dpar, wr, trk, trs, k3)
+    rhs(t + 0.5 * h, tmp, v, s, k3)
     for i in range(n):
         tmp[i] = x[i] + h * k3[i]
-    rhs(t + h, tmp, v, lin, bd, dd, dpar, wr, trk, trs, k4)
+    rhs(t + h, tmp, v, s, k4)
     for i in range(n):
         out[i] = x[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
 
 
 @njit(cache=True)
-def rk4(x0, t0, dt, n_steps, stride, y_limit, v, lin, bd, dd, dpar, wr, trk, trs):
+def rk4(x0, t0, dt, n_steps, stride, y_limit, v, s):
     """Classical fixed-step fourth-order Runge-Kutta.
 
     Parameters
@@ -71,8 +103,10 @@ def rk4(x0, t0, dt, n_steps, stride, y_limit, v, lin, bd, dd, dpar, wr, trk, trs
         Store every ``stride``-th state (the first is always stored).
     y_limit : float
         Derailment limit on a wheelset's lateral displacement relative to the track (m).
-    v, lin, bd, dd, dpar, wr, trk, trs
-        Model arguments (see :meth:`railhunt.model.Model.args`).
+    v : float
+        Forward speed (m/s).
+    s : SystemArrays
+        The model's arrays (:class:`railhunt.kernel.layout.SystemArrays`).
 
     Returns
     -------
@@ -81,7 +115,7 @@ def rk4(x0, t0, dt, n_steps, stride, y_limit, v, lin, bd, dd, dpar, wr, trk, trs
     x : numpy.ndarray
         Stored states, one row per time.
     status : int
-        Status code (module docstring).
+        Status code (:data:`STATUS_NAMES`).
     """
     n = x0.shape[0]
     n_out = n_steps // stride + 1
@@ -99,9 +133,9 @@ def rk4(x0, t0, dt, n_steps, stride, y_limit, v, lin, bd, dd, dpar, wr, trk, trs
     status = OK
     t = t0
     for step in range(1, n_steps + 1):
-        rk4_step(t, x, dt, v, lin, bd, dd, dpar, wr, trk, trs, k1, k2, k3, k4, tmp, x)
+        rk4_step(t, x, dt, v, s, k1, k2, k3, k4, tmp, x)
         t = t0 + step * dt
-        status = _check_state(t, x, y_limit, v, wr, trk, trs)
+        status = check_state(t, x, y_limit, v, s)
         if step % stride == 0 or status != OK:
             ts[j] = t
             xs[j] = x
@@ -126,10 +160,7 @@ _E1, _E3, _E4, _E5, _E6, _E7 = (
 
 
 @njit(cache=True)
-def dopri5(
-    x0, t0, t_end, dt_out, rtol, atol, h0, h_max, max_steps, y_limit,
-    v, lin, bd, dd, dpar, wr, trk, trs,
-):  # fmt: skip
+def dopri5(x0, t0, t_end, dt_out, rtol, atol, h0, h_max, max_steps, y_limit, v, s):
     """Adaptive Dormand-Prince 5(4) with PI step-size control and dense output.
 
     Parameters
@@ -151,8 +182,10 @@ def dopri5(
         Largest number of accepted steps.
     y_limit : float
         Derailment limit (m).
-    v, lin, bd, dd, dpar, wr, trk, trs
-        Model arguments.
+    v : float
+        Forward speed (m/s).
+    s : SystemArrays
+        The model's arrays (:class:`railhunt.kernel.layout.SystemArrays`).
 
     Returns
     -------
@@ -180,7 +213,7 @@ def dopri5(
     k5 = np.empty(n)
     k6 = np.empty(n)
     k7 = np.empty(n)
-    rhs(t0, x, v, lin, bd, dd, dpar, wr, trk, trs, k1)
+    rhs(t0, x, v, s, k1)
     ts[0] = t0
     xs[0] = x
     j = 1
@@ -196,26 +229,26 @@ def dopri5(
             h = t_end - t
         for i in range(n):
             tmp[i] = x[i] + h * _A21 * k1[i]
-        rhs(t + _C2 * h, tmp, v, lin, bd, dd, dpar, wr, trk, trs, k2)
+        rhs(t + _C2 * h, tmp, v, s, k2)
         for i in range(n):
             tmp[i] = x[i] + h * (_A31 * k1[i] + _A32 * k2[i])
-        rhs(t + _C3 * h, tmp, v, lin, bd, dd, dpar, wr, trk, trs, k3)
+        rhs(t + _C3 * h, tmp, v, s, k3)
         for i in range(n):
             tmp[i] = x[i] + h * (_A41 * k1[i] + _A42 * k2[i] + _A43 * k3[i])
-        rhs(t + _C4 * h, tmp, v, lin, bd, dd, dpar, wr, trk, trs, k4)
+        rhs(t + _C4 * h, tmp, v, s, k4)
         for i in range(n):
             tmp[i] = x[i] + h * (_A51 * k1[i] + _A52 * k2[i] + _A53 * k3[i] + _A54 * k4[i])
-        rhs(t + _C5 * h, tmp, v, lin, bd, dd, dpar, wr, trk, trs, k5)
+        rhs(t + _C5 * h, tmp, v, s, k5)
         for i in range(n):
             tmp[i] = x[i] + h * (
                 _A61 * k1[i] + _A62 * k2[i] + _A63 * k3[i] + _A64 * k4[i] + _A65 * k5[i]
             )
-        rhs(t + h, tmp, v, lin, bd, dd, dpar, wr, trk, trs, k6)
+        rhs(t + h, tmp, v, s, k6)
         for i in range(n):
             xn[i] = x[i] + h * (
                 _B1 * k1[i] + _B3 * k3[i] + _B4 * k4[i] + _B5 * k5[i] + _B6 * k6[i]
             )
-        rhs(t + h, xn, v, lin, bd, dd, dpar, wr, trk, trs, k7)
+        rhs(t + h, xn, v, s, k7)
         err = 0.0
         for i in range(n):
             e = h * (
@@ -252,7 +285,7 @@ def dopri5(
                 x[i] = xn[i]
                 k1[i] = k7[i]
             n_acc += 1
-            status = _check_state(t, x, y_limit, v, wr, trk, trs)
+            status = check_state(t, x, y_limit, v, s)
             if status != OK:
                 if dt_out > 0 and j < n_out:
                     ts[j] = t
@@ -271,3 +304,33 @@ def dopri5(
                 status = STEP_FAILED
                 break
     return ts[:j], xs[:j], status, n_acc, n_rej
+
+
+def _run_rk4(x0, t0, duration, v, s, *, dt, output_dt, rtol, atol, y_limit):
+    """:func:`rk4` over ``duration`` s at step ``dt``; output every ``output_dt`` s."""
+    n_steps = int(round(duration / dt))
+    stride = 1 if output_dt is None else max(1, int(round(output_dt / dt)))
+    t, x, status = rk4(x0, t0, dt, n_steps, stride, y_limit, v, s)
+    return t, x, status, {"steps": n_steps, "rhs_calls": 4 * n_steps}
+
+
+def _run_dopri5(x0, t0, duration, v, s, *, dt, output_dt, rtol, atol, y_limit):
+    """:func:`dopri5` over ``duration`` s; dense output every ``output_dt`` s."""
+    n = x0.shape[0]
+    if atol is None:
+        n_dof, n_damper = s.linear.shape[0], s.damper.shape[0]
+        atol_v = default_atol(n_dof, n_damper)
+    else:
+        atol_v = np.broadcast_to(atol, (n,)).copy()
+    out_dt = -1.0 if output_dt is None else float(output_dt)
+    max_steps = int(max(1000, duration / 1e-5))
+    t, x, status, n_acc, n_rej = dopri5(
+        x0, t0, t0 + duration, out_dt, rtol, atol_v, 1e-4, 0.01, max_steps, y_limit, v, s
+    )
+    stats = {"steps": n_acc, "rejected": n_rej, "rhs_calls": 6 * (n_acc + n_rej) + 1}
+    return t, x, status, stats
+
+
+#: Integrators by name: ``"rk4"`` (classical fixed-step Runge-Kutta, the paper's) and
+#: ``"dopri5"`` (adaptive Dormand-Prince 5(4)); see the module docstring for the signature.
+METHODS: dict[str, Callable[..., tuple]] = {"rk4": _run_rk4, "dopri5": _run_dopri5}

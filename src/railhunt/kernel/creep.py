@@ -19,12 +19,23 @@ saturated together with the creepage part, as in the heuristic law.
 from __future__ import annotations
 
 import math
+from enum import IntEnum
 
 from numba import njit
 
-#: Creep-law codes understood by the compiled right-hand side.
+
+class CreepLaw(IntEnum):
+    """Creep-law codes understood by the compiled right-hand side (slot ``WR.CREEP_LAW``)."""
+
+    HEURISTIC = 0  # the paper's Eq. 28, one factor per wheelset from the wheels' mean beta
+    HEURISTIC_PER_WHEEL = 1  # Eq. 28 with one factor per wheel
+    LINEAR = 2  # Kalker's linear law, no saturation
+    POLACH = 3  # Polach's saturation per wheel
+
+
+#: Creep-law names (as users write them) -> codes.
 CREEP_LAWS: dict[str, int] = {
-    "heuristic": 0, "heuristic-per-wheel": 1, "linear": 2, "polach": 3,
+    law.name.lower().replace("_", "-"): int(law) for law in CreepLaw
 }
 
 

@@ -1,0 +1,277 @@
+"""Where every state and parameter slot sits: names, never literal offsets.
+
+The state vector of a vehicle with ``n_dof`` generalised coordinates and ``n_damper``
+Maxwell yaw dampers is, in this order::
+
+    x[0 : n_dof]                     generalised coordinates q (m, rad)
+    x[n_dof : 2 n_dof]               their rates dq/dt (m/s, rad/s)
+    x[2 n_dof : 2 n_dof + n_damper]  yaw damper forces F_d (N, positive in tension)
+
+:class:`StateLayout` names the coordinates body by body; :data:`VEHICLE_17DOF` is the
+paper's vehicle (car body, two bogie frames, four wheelsets) and the module constants
+below (``DOF_NAMES``, ``STATE_NAMES``, ``Y_W1``, ``WHEELSET_Y``, ``RATE0``, ``FORCE0``,
+...) are its slots. The compiled kernel reads the sizes from the arrays it is given
+(:class:`SystemArrays`), so another body layout needs a new :class:`StateLayout` and the
+object layer's assembly, not a new right-hand side.
+
+The parameter vectors the kernel reads are laid out by :class:`WR` (wheel/rail
+parameters, followed by an optional contact table) and :class:`DamperParam` (one row per
+yaw damper).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import IntEnum
+from typing import NamedTuple
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Body:
+    """A rigid body of the vehicle and the coordinates it has.
+
+    Parameters
+    ----------
+    name : str
+        Body name, e.g. ``"car"``, ``"bogie1"``, ``"wheelset3"``.
+    tag : str
+        Suffix of its coordinate names, e.g. ``"c"``, ``"t1"``, ``"w3"``.
+    coordinates : tuple of str
+        Its coordinates in state order, from ``"y"`` (lateral, m), ``"psi"`` (yaw, rad)
+        and ``"phi"`` (roll, rad).
+    """
+
+    name: str
+    tag: str
+    coordinates: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class StateLayout:
+    """The state vector of a vehicle: bodies, their coordinates, rates and damper forces.
+
+    Parameters
+    ----------
+    bodies : tuple of Body
+        Bodies in state order.
+    dampers : tuple of str
+        Names of the Maxwell yaw dampers whose forces are states, in state order.
+    """
+
+    bodies: tuple[Body, ...]
+    dampers: tuple[str, ...]
+
+    @property
+    def dof_names(self) -> tuple[str, ...]:
+        """Names of the generalised coordinates, e.g. ``("y_c", "psi_c", ...)``."""
+        return tuple(f"{c}_{b.tag}" for b in self.bodies for c in b.coordinates)
+
+    @property
+    def n_dof(self) -> int:
+        """Number of generalised coordinates."""
+        return len(self.dof_names)
+
+    @property
+    def n_damper(self) -> int:
+        """Number of yaw dampers (force states)."""
+        return len(self.dampers)
+
+    @property
+    def n_state(self) -> int:
+        """Length of the state vector: coordinates, rates, damper forces."""
+        return 2 * self.n_dof + self.n_damper
+
+    @property
+    def rate0(self) -> int:
+        """Index of the first rate: ``x[rate0 + i]`` is the rate of coordinate ``i``."""
+        return self.n_dof
+
+    @property
+    def force0(self) -> int:
+        """Index of the first damper force: ``x[force0 + d]`` is damper ``d``'s force."""
+        return 2 * self.n_dof
+
+    @property
+    def state_names(self) -> tuple[str, ...]:
+        """Names of all states: coordinates, ``d`` + coordinate, ``F_`` + damper."""
+        names = self.dof_names
+        return names + tuple("d" + n for n in names) + tuple("F_" + d for d in self.dampers)
+
+    def dof(self, name: str) -> int:
+        """Index of coordinate ``name`` (e.g. ``"psi_t2"``) in ``q`` and in the state."""
+        return self.dof_names.index(name)
+
+    def rate(self, name: str) -> int:
+        """State index of the rate of coordinate ``name``."""
+        return self.rate0 + self.dof(name)
+
+    def force(self, damper: str) -> int:
+        """State index of the force of yaw damper ``damper`` (e.g. ``"d3"``)."""
+        return self.force0 + self.dampers.index(damper)
+
+    def body_dofs(self, body: str) -> tuple[int, int, int]:
+        """Indices of ``(y, psi, phi)`` of ``body`` in ``q``; -1 where it has none."""
+        for b in self.bodies:
+            if b.name == body:
+                return tuple(  # type: ignore[return-value]
+                    self.dof(f"{c}_{b.tag}") if c in b.coordinates else -1
+                    for c in ("y", "psi", "phi")
+                )
+        raise KeyError(f"no body {body!r}; bodies are: {', '.join(self.body_names)}")
+
+    @property
+    def body_names(self) -> tuple[str, ...]:
+        """Names of the bodies in state order."""
+        return tuple(b.name for b in self.bodies)
+
+    @property
+    def wheelsets(self) -> tuple[str, ...]:
+        """Names of the wheelsets (bodies named ``wheelset*``), leading first."""
+        return tuple(b.name for b in self.bodies if b.name.startswith("wheelset"))
+
+    def wheelset_index(self) -> np.ndarray:
+        """Indices of ``(y, psi)`` of every wheelset in ``q``, shape ``(n_wheelsets, 2)``."""
+        return np.array(
+            [self.body_dofs(w)[:2] for w in self.wheelsets], dtype=np.int64
+        ).reshape(-1, 2)
+
+
+_LATERAL_YAW_ROLL = ("y", "psi", "phi")
+_LATERAL_YAW = ("y", "psi")
+
+#: The paper's 17-DOF vehicle: car body and two bogie frames (lateral, yaw, roll), four
+#: wheelsets (lateral, yaw); four yaw dampers (front left, front right, rear left, rear
+#: right).
+VEHICLE_17DOF = StateLayout(
+    bodies=(
+        Body("car", "c", _LATERAL_YAW_ROLL),
+        Body("bogie1", "t1", _LATERAL_YAW_ROLL),
+        Body("bogie2", "t2", _LATERAL_YAW_ROLL),
+        Body("wheelset1", "w1", _LATERAL_YAW),
+        Body("wheelset2", "w2", _LATERAL_YAW),
+        Body("wheelset3", "w3", _LATERAL_YAW),
+        Body("wheelset4", "w4", _LATERAL_YAW),
+    ),
+    dampers=("d1", "d2", "d3", "d4"),
+)
+
+# ---- the 17-DOF vehicle's slots ------------------------------------------------------
+LAYOUT = VEHICLE_17DOF
+#: Names of the 17 generalised coordinates, in state order.
+DOF_NAMES: tuple[str, ...] = LAYOUT.dof_names
+#: Names of the yaw dampers.
+DAMPER_NAMES: tuple[str, ...] = LAYOUT.dampers
+N_DOF = LAYOUT.n_dof
+N_DAMPER = LAYOUT.n_damper
+#: Length of the state vector (38).
+N_STATE = LAYOUT.n_state
+#: Index of the first rate (``x[RATE0 + i]`` is the rate of coordinate ``i``).
+RATE0 = LAYOUT.rate0
+#: Index of the first yaw damper force.
+FORCE0 = LAYOUT.force0
+#: Names of the 38 states.
+STATE_NAMES: tuple[str, ...] = LAYOUT.state_names
+#: Body name -> indices of (y, psi, phi) in q; -1 where the body has no such coordinate.
+BODY_DOFS: dict[str, tuple[int, int, int]] = {b: LAYOUT.body_dofs(b) for b in LAYOUT.body_names}
+#: Lateral displacements of the car body and the bogie frames in q.
+BODY_Y = np.array([LAYOUT.dof(n) for n in ("y_c", "y_t1", "y_t2")])
+#: Roll angles of the bogie frames in q.
+BOGIE_PHI = np.array([LAYOUT.dof(n) for n in ("phi_t1", "phi_t2")])
+#: Indices of (y, psi) of each wheelset in q, shape (4, 2).
+WHEELSET_INDEX = LAYOUT.wheelset_index()
+#: Indices of the wheelsets' lateral displacements (and in the state vector).
+WHEELSET_Y = WHEELSET_INDEX[:, 0].copy()
+#: Indices of the wheelsets' yaw angles.
+WHEELSET_PSI = WHEELSET_INDEX[:, 1].copy()
+#: Index of the leading wheelset's lateral displacement.
+Y_W1 = LAYOUT.dof("y_w1")
+#: Slice of the yaw damper forces in the state vector.
+FORCES = slice(FORCE0, FORCE0 + N_DAMPER)
+
+
+class WR(IntEnum):
+    """Slots of the wheel/rail parameter vector (SI units).
+
+    After ``TABLE`` comes either nothing (``TABLE`` holds 0: the polynomial geometry of
+    Eqs. 32-33) or a contact table on a uniform grid of the wheelset's lateral
+    displacement: ``[n, y0, dy, r_L[n], r_R[n], delta_L[n], delta_R[n]]`` starting at
+    ``TABLE`` (see :func:`railhunt.kernel.contact.wheel_geometry`).
+    """
+
+    F11 = 0  # longitudinal creep coefficient (N)
+    F22 = 1  # lateral creep coefficient (N)
+    F23 = 2  # lateral/spin creep coefficient (N*m)
+    F33 = 3  # spin creep coefficient (N*m^2)
+    MU = 4  # friction coefficient
+    N = 5  # normal load per wheel (N)
+    A = 6  # half the contact-point distance (m)
+    R0 = 7  # centred rolling radius (m)
+    LAMBDA1 = 8  # rolling-radius polynomial coefficients (1, 1/m, ... 1/m^4)
+    LAMBDA2 = 9
+    LAMBDA3 = 10
+    LAMBDA4 = 11
+    LAMBDA5 = 12
+    D0 = 13  # contact-angle polynomial coefficients (rad, rad/m, rad/m^4, rad/m^5)
+    D1 = 14
+    D4 = 15
+    D5 = 16
+    DELTA_MAX = 17  # flange angle: the contact angle's limit (rad)
+    CREEP_LAW = 18  # railhunt.kernel.creep.CreepLaw code
+    INV_MW = 19  # 1 / wheelset mass (1/kg)
+    INV_JW = 20  # 1 / wheelset yaw inertia (1/(kg*m^2))
+    TABLE = 21  # number of contact-table points (0: polynomials), then the table
+
+
+#: Length of the wheel/rail vector without a contact table (the 0 in ``TABLE`` included).
+N_WR = WR.TABLE + 1
+
+
+class DamperParam(IntEnum):
+    """Columns of the yaw damper parameter array (one row per damper)."""
+
+    K_D = 0  # series stiffness (N/m)
+    C_D1 = 1  # first-stage damping (N*s/m)
+    C_D2 = 2  # second-stage damping (N*s/m)
+    F_U = 3  # blow-off force (N)
+
+
+class SystemArrays(NamedTuple):
+    """Everything the compiled right-hand side needs besides ``(t, x, v)``.
+
+    Built by :meth:`railhunt.model.Model.system`; passed as one argument to every kernel
+    function (``rhs(t, x, v, system, out)``).
+
+    Attributes
+    ----------
+    linear : numpy.ndarray, shape (n_dof, 2 n_dof)
+        ``-M^-1 [K + G, C]``: accelerations from the linear suspension.
+    damper_rows : numpy.ndarray, shape (n_damper, n_dof)
+        Yaw damper elongation rows ``B_d`` (elongation = ``B_d @ q``).
+    damper_acc : numpy.ndarray, shape (n_dof, n_damper)
+        ``-M^-1 B_d^T``: accelerations per unit damper force.
+    damper : numpy.ndarray, shape (n_damper, 4)
+        Damper parameters, columns :class:`DamperParam`.
+    wheel_rail : numpy.ndarray
+        Wheel/rail parameters, slots :class:`WR`.
+    wheelsets : numpy.ndarray of int64, shape (n_wheelsets, 2)
+        Indices of each wheelset's ``(y, psi)`` in ``q``.
+    wheelset_delay : numpy.ndarray, shape (n_wheelsets,)
+        Distance of each wheelset behind the leading one (m): it meets the track input at
+        track position ``v t - delay``.
+    track : numpy.ndarray, shape (4,)
+        Track input ``[code, p1, p2, p3]`` (:mod:`railhunt.kernel.track`).
+    track_samples : numpy.ndarray
+        Alignment samples of a sampled track (m), else one dummy entry.
+    """
+
+    linear: np.ndarray
+    damper_rows: np.ndarray
+    damper_acc: np.ndarray
+    damper: np.ndarray
+    wheel_rail: np.ndarray
+    wheelsets: np.ndarray
+    wheelset_delay: np.ndarray
+    track: np.ndarray
+    track_samples: np.ndarray

@@ -1,0 +1,333 @@
+"""Vehicle TOML files: reading (:func:`load_vehicle`, ``base =``), writing, shipped vehicles.
+
+A vehicle file has a ``[vehicle]`` table (name, description, optional ``base`` naming a
+shipped vehicle), a ``[parameters]`` table (short form ``C_d1 = 600000.0`` or table form
+with ``value`` and optional ``unit``, ``meaning``, ``source``) and an optional
+``[contact]`` table (:class:`~railhunt.vehicle.ContactSpec`). The shipped vehicles are
+the files of ``railhunt/data/vehicles``; they cannot themselves have a base.
+"""
+
+import functools
+import math
+import os
+import tomllib
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+from railhunt.vehicle.contact import ContactSpec
+from railhunt.vehicle.core import Vehicle
+from railhunt.vehicle.errors import (
+    MissingParametersError,
+    ParameterError,
+    UnknownParameterError,
+    VehicleFileError,
+)
+from railhunt.vehicle.formatting import toml_string, with_unit
+from railhunt.vehicle.parameters import (
+    DERIVED,
+    PARAMETERS,
+    as_float,
+    derived_values,
+    missing_parameters,
+    validate_all,
+    validate_value,
+)
+
+__all__ = ["load_shipped", "load_vehicle", "shipped_vehicles", "vehicle_toml"]
+
+_DATA_PACKAGE = "railhunt"
+_VEHICLE_DIR = ("data", "vehicles")
+_TABLE_KEYS = frozenset({"value", "unit", "meaning", "source"})
+_VEHICLE_KEYS = frozenset({"name", "description", "base"})
+_CONTACT_KEYS = frozenset({"wheel", "rail", "rail_inclination", "gauge", "back_to_back",
+                           "wheel_radius", "y_max", "y_step"})  # fmt: skip
+
+
+# --------------------------------------------------------------------------- shipped data
+
+
+def _shipped_dir() -> Any:
+    folder = resources.files(_DATA_PACKAGE)
+    for part in _VEHICLE_DIR:
+        folder = folder / part
+    return folder
+
+
+def shipped_path(name: str) -> Any:
+    """The shipped vehicle file of ``name`` (an importlib resource; may not exist)."""
+    return _shipped_dir() / f"{name}.toml"
+
+
+def shipped_vehicles() -> tuple[str, ...]:
+    """Names of the vehicles shipped with railhunt (usable as ``[vehicle] base``).
+
+    Returns
+    -------
+    tuple of str
+        Sorted names, e.g. ``("paper2019",)``.
+    """
+    suffix = ".toml"
+    files = (p.name for p in _shipped_dir().iterdir())
+    return tuple(sorted(f[: -len(suffix)] for f in files if f.endswith(suffix)))
+
+
+@functools.cache
+def load_shipped(name: str) -> Vehicle:
+    """The shipped vehicle ``name``, read once (see :meth:`Vehicle.shipped`).
+
+    Raises
+    ------
+    VehicleFileError
+        No shipped vehicle has that name.
+    """
+    available = shipped_vehicles()
+    if name not in available:
+        raise VehicleFileError(
+            f"no shipped vehicle named {name!r}; available: {', '.join(available)}"
+        )
+    path = shipped_path(name)
+    return _vehicle_from_data(
+        _parse_toml(path.read_text(encoding="utf-8"), str(path)),
+        str(path),
+        default_name=name,
+        depth=1,
+    )
+
+
+# --------------------------------------------------------------------------- writing
+
+
+def vehicle_toml(vehicle: Vehicle) -> str:
+    """The complete vehicle file of ``vehicle`` (see :meth:`Vehicle.to_toml`).
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+
+    Returns
+    -------
+    str
+        TOML text: every parameter in table form with value, unit and meaning.
+    """
+    lines = [
+        "# railhunt vehicle file (written by railhunt.vehicle.Vehicle.to_toml).",
+        "# SI units throughout. Each parameter: value (SI), unit, meaning.",
+        f"# Derived, not inputs: v_u = F_u / C_d1 = {vehicle.v_u!r} m/s,"
+        f" N = W * g / 2 = {vehicle.N!r} N.",
+        "",
+        "[vehicle]",
+        f"name = {toml_string(vehicle.name)}",
+        f"description = {toml_string(vehicle.description)}",
+    ]
+    for spec in PARAMETERS.values():
+        lines += [
+            "",
+            f"[parameters.{spec.name}]",
+            f"value = {float(getattr(vehicle, spec.name))!r}",
+            f"unit = {toml_string(spec.unit)}",
+            f"meaning = {toml_string(spec.meaning)}",
+        ]
+    if vehicle.contact is not None:
+        lines += vehicle.contact.toml_lines()
+    return "\n".join(lines) + "\n"
+
+
+# --------------------------------------------------------------------------- reading
+
+
+def _parse_toml(text: str, where: str) -> dict[str, Any]:
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise VehicleFileError(f"{where}: not a valid TOML file: {exc}") from exc
+
+
+def load_vehicle(path: str | os.PathLike[str]) -> Vehicle:
+    """Read a vehicle TOML file.
+
+    Each parameter is given under ``[parameters]`` either in short form
+    (``M_c = 28000.0``) or in table form (``[parameters.M_c]`` with ``value`` and optional
+    ``unit``, ``meaning``, ``source``; a given ``unit`` must equal the expected SI unit).
+    With ``[vehicle] base = "<shipped name>"`` the file starts from that shipped vehicle
+    and overrides only the parameters it lists; otherwise every parameter is required
+    (except one with a default in the table, which takes its default).
+    The derived ``v_u`` (m/s) and ``N`` (N) may be stated as a cross-check: they must
+    agree with ``F_u / C_d1`` (relative 1e-6) and ``W * g / 2`` (relative 1e-3).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The TOML file.
+
+    Returns
+    -------
+    Vehicle
+        Named by ``[vehicle] name``, defaulting to the file's stem.
+
+    Raises
+    ------
+    VehicleFileError
+        Invalid TOML, unknown sections or keys, unknown base.
+    ParameterError
+        (or a subclass) for unknown, missing, non-numeric, mis-united, out-of-range or
+        inconsistent parameters; ``str(error)`` starts with the file path.
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except UnicodeDecodeError as exc:
+        raise VehicleFileError(f"{path}: not a UTF-8 text file") from exc
+    return _vehicle_from_data(_parse_toml(text, str(path)), str(path), default_name=path.stem)
+
+
+def _vehicle_from_data(
+    data: dict[str, Any], where: str, *, default_name: str, depth: int = 0
+) -> Vehicle:
+    try:
+        return _build_vehicle(data, where, default_name, depth)
+    except ParameterError as exc:
+        if exc.path is None:
+            exc.path = where
+        raise
+
+
+def _build_vehicle(data: dict[str, Any], where: str, default_name: str, depth: int) -> Vehicle:
+    extra = set(data) - {"vehicle", "parameters", "contact"}
+    if extra:
+        raise VehicleFileError(
+            f"{where}: unknown top-level key(s) {sorted(extra)}; "
+            "expected only [vehicle], [parameters] and [contact]"
+        )
+    contact = _read_contact(data.get("contact"), where)
+    meta = data.get("vehicle", {})
+    if not isinstance(meta, dict):
+        raise VehicleFileError(f"{where}: 'vehicle' must be a table")
+    bad = set(meta) - _VEHICLE_KEYS
+    if bad:
+        raise VehicleFileError(
+            f"{where}: unknown key(s) {sorted(bad)} in [vehicle]; "
+            f"allowed: {', '.join(sorted(_VEHICLE_KEYS))}"
+        )
+    for key in ("name", "description", "base"):
+        if key in meta and not isinstance(meta[key], str):
+            raise VehicleFileError(f"{where}: [vehicle] {key} must be a string")
+
+    table = data.get("parameters", {})
+    if not isinstance(table, dict):
+        raise VehicleFileError(f"{where}: 'parameters' must be a table")
+
+    given: dict[str, float] = {}
+    stated: dict[str, float] = {}
+    for name, entry in table.items():
+        if name in DERIVED:
+            spec = DERIVED[name]
+            stated[name] = _read_entry(name, entry, spec.unit, spec.meaning)
+            continue
+        if name not in PARAMETERS:
+            raise UnknownParameterError(name, entry)
+        spec = PARAMETERS[name]
+        given[name] = validate_value(name, _read_entry(name, entry, spec.unit, spec.meaning))
+
+    base_name = meta.get("base")
+    if base_name is not None:
+        if depth > 0:
+            raise VehicleFileError(f"{where}: a shipped vehicle cannot itself have a base")
+        base = load_shipped(base_name)
+        params: dict[str, float] = {**base.as_dict(), **given}
+        if contact is None:
+            contact = base.contact
+    else:
+        missing = missing_parameters(given)
+        if missing:
+            raise MissingParametersError(
+                missing,
+                hint='give them, or set [vehicle] base = "paper2019" to start from '
+                "a shipped vehicle",
+            )
+        params = given
+    values = validate_all(params)
+
+    actual = derived_values(values)
+    for name, value in stated.items():
+        spec = DERIVED[name]
+        if not math.isclose(value, actual[name], rel_tol=spec.rel_tol):
+            raise ParameterError(
+                name,
+                value,
+                f"equal to {spec.formula} = {with_unit(actual[name], spec.unit)} "
+                f"(to relative {spec.rel_tol:g}); {name} is derived: change "
+                f"{spec.change_instead} instead, or remove it",
+                spec.unit,
+                meaning=spec.meaning,
+            )
+
+    return Vehicle(
+        name=meta.get("name", default_name),
+        description=meta.get("description", ""),
+        contact=contact,
+        **values,
+    )
+
+
+def _read_contact(table: object, where: str) -> ContactSpec | None:
+    """The ``[contact]`` section; file paths relative to the vehicle file's folder."""
+    if table is None:
+        return None
+    if not isinstance(table, dict):
+        raise VehicleFileError(f"{where}: 'contact' must be a table")
+    bad = set(table) - _CONTACT_KEYS
+    if bad:
+        raise VehicleFileError(f"{where}: unknown key(s) {sorted(bad)} in [contact]; "
+                               f"allowed: {', '.join(sorted(_CONTACT_KEYS))}")  # fmt: skip
+    entries = dict(table)
+    folder = Path(where).parent
+    for key, names in (("wheel", ("S1002",)), ("rail", ("UIC60", "60E1"))):
+        value = entries.get(key)
+        if isinstance(value, str) and value.upper() not in names:
+            path = Path(value)
+            if not path.is_absolute():
+                path = folder / path
+            if not path.is_file():
+                raise VehicleFileError(f"{where}: [contact] {key} = {value!r} is neither "
+                                       f"{' nor '.join(names)} nor an existing file")  # fmt: skip
+            entries[key] = str(path.resolve())
+    try:
+        return ContactSpec(**entries)
+    except (TypeError, ValueError) as exc:
+        raise VehicleFileError(f"{where}: [contact]: {exc}") from None
+
+
+def _read_entry(name: str, entry: object, unit: str, meaning: str) -> float:
+    """Value of a short-form or table-form entry, with the unit check of the table form."""
+    if isinstance(entry, dict):
+        bad = set(entry) - _TABLE_KEYS
+        if bad:
+            raise ParameterError(
+                name,
+                entry,
+                "a table with keys value, unit, meaning, source",
+                unit,
+                message=f"[parameters.{name}]: unknown key(s) {sorted(bad)}; "
+                f"allowed: {', '.join(sorted(_TABLE_KEYS))}",
+            )
+        if "value" not in entry:
+            raise ParameterError(
+                name,
+                None,
+                "a table with a 'value' key",
+                unit,
+                message=f"[parameters.{name}]: missing 'value' (SI value in {unit})",
+            )
+        given_unit = entry.get("unit")
+        if given_unit is not None and given_unit != unit:
+            raise ParameterError(
+                name,
+                entry["value"],
+                f"given in {unit}",
+                unit,
+                message=f"{name}: unit {given_unit!r} does not match the expected unit "
+                f"{unit!r}; vehicle files use SI units: give the value in {unit}",
+            )
+        entry = entry["value"]
+    return as_float(name, entry, unit, meaning)
