@@ -18,9 +18,7 @@ from railhunt.cli.options import (
 )
 from railhunt.cli.output import fmt, json_safe, spinner, stdout_console
 from railhunt.cli.rules import Ordered, Requires, command
-
-#: Blow-off force (N) standing for "no blow-off" ('inf' on the command line).
-NO_BLOWOFF = 1e12
+from railhunt.paper2019 import NO_BLOWOFF  # the blow-off force standing for 'inf' (N)
 
 RULES = (
     Ordered("--from", "--to", "--to {to_kmh:g} km/h must be above --from {from_kmh:g} km/h",
