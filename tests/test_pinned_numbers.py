@@ -7,8 +7,9 @@ Brent to 0.01 or 0.001 km/h, fold location by a parabola through three continuat
 not by agreement with the paper. A physics change of the size a bug makes (dropping the
 gravitational roll stiffness moves the Hopf point by 0.02 km/h) fails them.
 
-Measured on the code of commit 52e48a0 (main, before the kernel move); the three expensive
-results (bisection 5 s, diagram 15 s, 8 kN diagram 2 s) are computed once per module.
+Measured on the code of commit 52e48a0 (main, before the kernel move), unchanged after it.
+The expensive results are computed once per module (warm numba cache, 2 shared cores:
+bisection under 1 s, diagram 10-21 s, 8 kN diagram 1.5-3.5 s).
 """
 
 from __future__ import annotations
