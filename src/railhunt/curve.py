@@ -15,7 +15,7 @@ plane rolls by a positive angle (a point above the track moves toward +y, the in
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -56,8 +56,8 @@ class Curve:
     Parameters
     ----------
     radius : float
-        Radius of the constant curve (m), positive and finite: 50 m to 100 km (straight
-        track has no Curve).
+        Radius of the constant curve (m): finite and at least 50 m (straight track has no
+        Curve; a very large radius approaches it).
     cant : float
         Height of the outer rail over the inner one (m), 0 to 0.2 m, measured over the
         rail-centre distance ``rail_distance``.
@@ -87,7 +87,8 @@ class Curve:
 
     def __post_init__(self) -> None:
         setter = object.__setattr__
-        setter(self, "radius", _check("radius", self.radius, 50.0, 1e5, "m"))
+        setter(self, "radius", _check("radius", self.radius, 50.0, math.inf, "m",
+                                      high_open=True))
         setter(self, "cant", _check("cant", self.cant, 0.0, 0.2, "m"))
         setter(self, "transition", _check("transition", self.transition, 0.0, 2000.0, "m"))
         if self.direction not in _DIRECTIONS:
@@ -111,24 +112,30 @@ class Curve:
         """Signed roll angle of the track plane in the constant curve (rad)."""
         return _DIRECTIONS[self.direction] * math.asin(self.cant / self.rail_distance)
 
-    def unbalanced_acceleration(self, speed: float) -> float:
+    def unbalanced_acceleration(self, speed: float, g: float = 9.81) -> float:
         """Unbalanced lateral acceleration in the track plane (m/s^2) at ``speed`` (m/s).
 
         ``v^2 / R cos(phi) - g sin(phi)`` toward the outside of the curve: positive with
-        a cant deficiency, negative with a cant excess (g = 9.81 m/s^2).
+        a cant deficiency, negative with a cant excess (``g`` in m/s^2: pass the
+        vehicle's).
         """
         phi = math.asin(self.cant / self.rail_distance)
-        return speed * speed / self.radius * math.cos(phi) - 9.81 * math.sin(phi)
+        return speed * speed / self.radius * math.cos(phi) - g * math.sin(phi)
 
-    def cant_deficiency(self, speed: float) -> float:
+    def cant_deficiency(self, speed: float, g: float = 9.81) -> float:
         """Cant deficiency (m) at ``speed`` (m/s): the extra cant that would balance it,
         ``rail_distance * a / g`` (negative: cant excess)."""
-        return self.rail_distance * self.unbalanced_acceleration(speed) / 9.81
+        return self.rail_distance * self.unbalanced_acceleration(speed, g) / g
 
-    def balance_speed(self) -> float:
+    def balance_speed(self, g: float = 9.81) -> float:
         """Speed (m/s) at which the cant balances the curve (no unbalanced acceleration)."""
         phi = math.asin(self.cant / self.rail_distance)
-        return math.sqrt(9.81 * math.tan(phi) * self.radius)
+        return math.sqrt(g * math.tan(phi) * self.radius)
+
+    def scaled(self, fraction: float) -> Curve:
+        """The same curve with its curvature and cant times ``fraction`` (0 < f <= 1): a
+        gentler curve, the first steps of a homotopy toward this one."""
+        return replace(self, radius=self.radius / fraction, cant=self.cant * fraction)
 
     def end(self) -> float:
         """Track position where the exit transition ends (m); inf without an exit."""
