@@ -170,9 +170,9 @@ def test_stable_branch_point_matches_simulation(diagram):
 def test_diagram_json_round_trip(diagram):
     import json
 
-    from railhunt.cli import _json_safe
+    from railhunt.cli.output import json_safe
 
-    data = json.loads(json.dumps(_json_safe(diagram.to_dict()), allow_nan=False))
+    data = json.loads(json.dumps(json_safe(diagram.to_dict()), allow_nan=False))
     for key in ("hopf_speed_kmh", "fold_speed_kmh", "hopf_type", "branches", "point_p"):
         assert key in data
     assert len(data["branches"][0]["speed_kmh"]) == diagram.branches[0].speed_kmh.size

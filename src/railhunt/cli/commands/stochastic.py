@@ -1,63 +1,30 @@
 """``railhunt critical-speed --method stochastic``: the run and its report.
 
-The option parsing lives with the ``critical-speed`` command in :mod:`railhunt.cli`; this
-module builds the irregular track, runs :func:`railhunt.analysis.stochastic.
-stochastic_critical_speed` and prints the table or the JSON object.
+The options and their rules live with the ``critical-speed`` command in
+:mod:`railhunt.cli.commands.critical_speed`; this module builds the irregular track, runs
+:func:`railhunt.stochastic_critical_speed` and prints the table or the JSON object.
 """
 
 from __future__ import annotations
 
-import contextlib
 import json
 import math
-from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
 import click
 
-from railhunt.cli import (
-    _json_safe,
-    _linear_line,
-    _show_progress,
-    _stdout_console,
-    _user_input,
+from railhunt.cli.errors import user_input
+from railhunt.cli.options import measured_track
+from railhunt.cli.output import (
+    json_safe,
+    linear_critical_speed_line,
+    stdout_console,
+    trial_progress,
 )
 
-#: Fade-in and fade-out (m) applied to measured alignments on the command line.
-MEASURED_TAPER = 20.0
 
-
-def measured_track(path: Path) -> Any:
-    """The measured alignment of ``path``, starting at 0 m, faded in and out over 20 m
-    (or over half the record when it is shorter than 40 m)."""
-    from railhunt.irregularity import load_irregularity
-
-    raw = load_irregularity(path)
-    return load_irregularity(path, taper=min(MEASURED_TAPER, raw.length / 2))
-
-
-@contextlib.contextmanager
-def _progress() -> Iterator[Callable[[Any], None]]:
-    if not _show_progress():
-        yield lambda trial: None
-        return
-    from rich.console import Console
-    from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
-
-    columns = (SpinnerColumn(), TextColumn("{task.description}"), TimeElapsedColumn())
-    with Progress(*columns, console=Console(stderr=True), transient=True) as progress:
-        task = progress.add_task("stochastic critical speed: first run ...", total=None)
-
-        def on_trial(trial: Any) -> None:
-            text = ("linear stability analysis ..." if trial is None else
-                    f"stochastic critical speed: {trial.speed_kmh:g} km/h was {trial.verdict}")
-            progress.update(task, description=text)
-
-        yield on_trial
-
-
-def stochastic_critical_speed_command(
+def report_stochastic_critical_speed(
     vehicle: Any,
     spectrum: str,
     seed: int,
@@ -69,22 +36,33 @@ def stochastic_critical_speed_command(
     dt: float | None,
     as_json: bool,
 ) -> None:
-    """Run the stochastic critical-speed search and report it (table or JSON)."""
-    from railhunt.analysis.linear import linear_critical_speed
-    from railhunt.analysis.stochastic import (
-        acceleration_limit,
-        bogie_mass,
-        stochastic_critical_speed,
-        sum_y_limit,
-    )
-    from railhunt.irregularity import track_irregularity
+    """Run the stochastic critical-speed search and report it (table or JSON).
 
-    with _user_input("--irregularity: " if irregularity_file else "--spectrum: "):
+    Parameters
+    ----------
+    vehicle : Vehicle
+        The vehicle of ``--vehicle``/``--set``.
+    spectrum, seed, track_length : str, int, float
+        The random track (``--spectrum``, ``--seed``, ``--track-length`` in m), unless
+        ``irregularity_file`` gives a measured one.
+    irregularity_file : Path or None
+        ``--irregularity``: CSV of a measured alignment.
+    start_kmh, step_kmh, tol_kmh : float
+        First trial speed, bracketing step and bisection resolution (km/h).
+    dt : float or None
+        Time step of the rk4 integrator (s); None: chosen from the model.
+    as_json : bool
+        Print one JSON object instead of the table.
+    """
+    from railhunt import linear_critical_speed, stochastic_critical_speed, track_irregularity
+    from railhunt.analysis.stochastic import acceleration_limit, bogie_mass, sum_y_limit
+
+    with user_input("--irregularity: " if irregularity_file else "--spectrum: "):
         if irregularity_file is not None:
             track = measured_track(irregularity_file)
         else:
             track = track_irregularity(spectrum, length=track_length, seed=seed)
-    with _progress() as on_trial, _user_input():
+    with trial_progress("stochastic critical speed", count=False) as on_trial, user_input():
         result = stochastic_critical_speed(
             vehicle, irregularity=track, start_kmh=start_kmh, step_kmh=step_kmh,
             tol_kmh=tol_kmh, dt=dt, progress=on_trial,
@@ -141,7 +119,7 @@ def stochastic_critical_speed_command(
                 for a in result.trials
             ],
         }  # fmt: skip
-        click.echo(json.dumps(_json_safe(data), allow_nan=False))
+        click.echo(json.dumps(json_safe(data), allow_nan=False))
         return
 
     from rich.table import Table
@@ -160,7 +138,7 @@ def stochastic_critical_speed_command(
             f"{a.acceleration_ratio:.2f}", "" if a.status == "ok" else a.status,
             style="red" if a.unstable else "green",
         )  # fmt: skip
-    console = _stdout_console()
+    console = stdout_console()
     console.print(table)
     console.print(
         f"limits: ΣY rms {sum_y_limit(vehicle) / 1e3:.2f} kN (static wheel load "
@@ -178,4 +156,4 @@ def stochastic_critical_speed_command(
         why = ("every trial speed up to 800 km/h met the criterion" if verdicts == {"stable"}
                else "every trial speed down to 20 km/h broke the criterion")  # fmt: skip
         console.print(f"stochastic critical speed: not found ({why})")
-    console.print(_linear_line(linear))
+    console.print(linear_critical_speed_line(linear))

@@ -7,18 +7,19 @@ from pathlib import Path
 
 import click
 
-from railhunt.cli import (
-    CliError,
-    _check_outputs,
-    _json_safe,
-    _number_range,
-    _stdout_console,
-    _user_input,
-    main,
+from railhunt.cli.errors import CliError, user_input
+from railhunt.cli.options import check_outputs, file_option, number_range
+from railhunt.cli.output import json_safe, stdout_console
+from railhunt.cli.rules import Ordered, command
+
+RULES = (
+    Ordered("--fmin", "--fmax", "--fmin {fmin:g} Hz is invalid: must be below --fmax {fmax:g} Hz",
+            strict=True),
 )
 
 
-@main.command(short_help="STFT of a measured signal: dominant frequency band over time.")
+@command("spectrogram", rules=RULES,
+         short_help="STFT of a measured signal: dominant frequency band over time.")
 @click.argument("csv_file", metavar="FILE.csv", type=click.Path(dir_okay=False, path_type=Path))
 @click.option(
     "--channel",
@@ -32,7 +33,7 @@ from railhunt.cli import (
     default=2.0,
     show_default=True,
     metavar="S",
-    callback=_number_range("s", 0.0, 1e4),
+    callback=number_range("s", 0.0, 1e4),
     help="Length of each STFT window (s); the frequency resolution is 1/window Hz.",
 )
 @click.option(
@@ -40,7 +41,7 @@ from railhunt.cli import (
     type=float,
     default=None,
     metavar="HZ",
-    callback=_number_range("Hz", 0.0, 1e6, low_open=False, optional=True),
+    callback=number_range("Hz", 0.0, 1e6, low_open=False, optional=True),
     help="Lowest frequency searched for the dominant band (Hz). Default: the first bin "
     "above 0 Hz.",
 )
@@ -49,18 +50,13 @@ from railhunt.cli import (
     type=float,
     default=None,
     metavar="HZ",
-    callback=_number_range("Hz", 0.0, 1e6, optional=True),
+    callback=number_range("Hz", 0.0, 1e6, optional=True),
     help="Highest frequency searched (and plotted) (Hz). Default: the Nyquist frequency.",
 )
-@click.option(
-    "--png",
-    "png_file",
-    type=click.Path(dir_okay=False, path_type=Path),
-    metavar="FILE",
-    help="Draw the STFT amplitude map (time vs frequency, like the paper's Fig. 9a).",
-)
+@file_option("--png", "png_file",
+             "Draw the STFT amplitude map (time vs frequency, like the paper's Fig. 9a).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of a table.")
-def spectrogram(
+def spectrogram_command(
     csv_file: Path,
     channel: str,
     window: float,
@@ -85,9 +81,7 @@ def spectrogram(
     steady band at the hunting frequency (a few Hz); after a yaw damper blows
     off it jumps higher (the paper's Fig. 8-9).
     """
-    _check_outputs(png=png_file)
-    if fmin is not None and fmax is not None and fmin >= fmax:
-        raise CliError(f"--fmin {fmin:g} Hz is invalid: must be below --fmax {fmax:g} Hz")
+    check_outputs(png=png_file)
     if not csv_file.exists():
         raise CliError(f"FILE.csv {csv_file}: no such file")
     from railhunt.analysis.spectrogram import (
@@ -97,9 +91,9 @@ def spectrogram(
         stft,
     )
 
-    with _user_input():
+    with user_input():
         t, y, name = read_channel(csv_file, channel)
-    with _user_input(f"{csv_file}: "):
+    with user_input(f"{csv_file}: "):
         spec = stft(t, y, window=window)
         bands = dominant_bands(spec, fmin=fmin, fmax=fmax)
     unit = name[name.rindex("[") + 1 : -1] if name.endswith("]") and "[" in name else ""
@@ -116,7 +110,7 @@ def spectrogram(
                 for b in bands
             ],  # fmt: skip
         }
-        click.echo(json.dumps(_json_safe(data), allow_nan=False))
+        click.echo(json.dumps(json_safe(data), allow_nan=False))
     else:
         from rich.markup import escape
         from rich.table import Table
@@ -130,15 +124,15 @@ def spectrogram(
         for b in bands:
             table.add_row(f"{b.start:.2f}", f"{b.end:.2f}", f"{b.frequency:.3g}",
                           f"{b.low:.3g}-{b.high:.3g}", f"{b.amplitude:.4g}")  # fmt: skip
-        _stdout_console().print(table)
+        stdout_console().print(table)
         strongest = max(bands, key=lambda b: b.amplitude)
-        _stdout_console().print(
+        stdout_console().print(
             f"strongest: {strongest.frequency:.3g} Hz between {strongest.start:.2f} s and "
             f"{strongest.end:.2f} s (peak amplitude {strongest.amplitude:.4g}"
             f"{f' {unit}' if unit else ''})"
         )
     if png_file is not None:
-        with _user_input("cannot write --png: "):
+        with user_input("cannot write --png: "):
             plot_spectrogram(spec, png_file, title=f"STFT of {name}", unit=unit, bands=bands,
                              fmax=fmax)  # fmt: skip
         if not as_json:

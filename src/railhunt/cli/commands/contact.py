@@ -8,7 +8,10 @@ from pathlib import Path
 
 import click
 
-from railhunt.cli import CliError, _check_outputs, _json_safe, _number_range, _user_input, main
+from railhunt.cli.errors import CliError, user_input
+from railhunt.cli.options import check_outputs, number_range
+from railhunt.cli.output import json_safe
+from railhunt.cli.rules import Ordered, command
 
 _INCLINATIONS = {"1:40": 1.0 / 40.0, "1:20": 1.0 / 20.0, "none": 0.0, "0": 0.0}
 
@@ -34,7 +37,14 @@ def _inclination(ctx: click.Context, param: click.Parameter, value: str) -> floa
     return incl
 
 
-@main.command("contact")
+RULES = (
+    Ordered("--step", "--y-max",
+            "--step {y_step:g} mm is invalid: must be at most --y-max {y_max:g} mm"),
+)
+
+
+@command("contact", rules=RULES,
+         short_help="Contact geometry and equivalent conicity of wheel and rail profiles.")
 @click.option("--wheel", "wheel", default="S1002", show_default=True, metavar="FILE|S1002",
               help="Wheel profile: SIMPACK .prw or 'y z' text/CSV file in mm (field side "
                    "at +y, radius increase at +z), or S1002 for the analytic EN 13715 profile.")
@@ -45,27 +55,27 @@ def _inclination(ctx: click.Context, param: click.Parameter, value: str) -> floa
 @click.option("--inclination", default="1:40", show_default=True, callback=_inclination,
               help="Rail inclination: 1:40, 1:20, none, or a tangent in [0, 0.1].")
 @click.option("--gauge", default=1435.0, show_default=True, metavar="MM",
-              callback=_number_range("mm", 500.0, 2000.0), help="Track gauge (mm).")
+              callback=number_range("mm", 500.0, 2000.0), help="Track gauge (mm).")
 @click.option("--back-to-back", "back_to_back", default=1360.0, show_default=True,
-              metavar="MM", callback=_number_range("mm", 400.0, 2000.0),
+              metavar="MM", callback=number_range("mm", 400.0, 2000.0),
               help="Distance between the wheels' inner faces (mm).")
 @click.option("--r0", "r0", default=430.0, show_default=True, metavar="MM",
-              callback=_number_range("mm", 100.0, 1000.0),
+              callback=number_range("mm", 100.0, 1000.0),
               help="Wheel radius at the tape circle (mm).")
 @click.option("--y-max", "y_max", default=12.0, show_default=True, metavar="MM",
-              callback=_number_range("mm", 0.1, 30.0),
+              callback=number_range("mm", 0.1, 30.0),
               help="Largest lateral wheelset displacement (mm).")
 @click.option("--step", "y_step", default=0.1, show_default=True, metavar="MM",
-              callback=_number_range("mm", 0.001, 1.0), help="Step of the displacement (mm).")
+              callback=number_range("mm", 0.001, 1.0), help="Step of the displacement (mm).")
 @click.option("--amplitude", default=3.0, show_default=True, metavar="MM",
-              callback=_number_range("mm", 0.0, 30.0),
+              callback=number_range("mm", 0.0, 30.0),
               help="Amplitude of the equivalent conicity reported (mm).")
 @click.option("--png", "png_file", type=click.Path(dir_okay=False, path_type=Path),
               help="Plot r_L, r_R, delta r, contact angles, roll and contact points.")
 @click.option("--csv", "csv_file", type=click.Path(dir_okay=False, path_type=Path),
               help="Write the table (mm, rad, mrad).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (SI units).")
-def contact(
+def contact_command(
     wheel: str, rail: str, inclination: float, gauge: float, back_to_back: float,
     r0: float, y_max: float, y_step: float, amplitude: float, png_file: Path | None,
     csv_file: Path | None, as_json: bool,
@@ -83,22 +93,22 @@ def contact(
       railhunt contact --png s1002_uic60.png
       railhunt contact --wheel worn.prw --inclination 1:20 --amplitude 2
     """
-    from railhunt.contact.conicity import (
-        ConicityError,
+    from railhunt import (
+        contact_geometry,
         equivalent_conicity,
         equivalent_conicity_regression,
+        read_profile,
+        s1002,
+        uic60,
     )
-    from railhunt.contact.geometry import contact_geometry
-    from railhunt.contact.profiles import read_profile, s1002, uic60
+    from railhunt.contact.conicity import ConicityError
 
-    _check_outputs(png=png_file, csv=csv_file)
-    if y_step > y_max:
-        raise CliError(f"--step {y_step:g} mm is invalid: must be at most --y-max {y_max:g} mm")
-    with _user_input("--wheel: "):
+    check_outputs(png=png_file, csv=csv_file)
+    with user_input("--wheel: "):
         w = s1002(step=1e-5) if wheel.upper() == "S1002" else read_profile(wheel, "wheel")
-    with _user_input("--rail: "):
+    with user_input("--rail: "):
         r = uic60(0.0, step=1e-5) if rail.upper() == "UIC60" else read_profile(rail, "rail")
-    with _user_input():
+    with user_input():
         geo = contact_geometry(
             w, r, rail_inclination=inclination, gauge=gauge * 1e-3,
             back_to_back=back_to_back * 1e-3, r0=r0 * 1e-3, y_max=y_max * 1e-3,
@@ -114,7 +124,7 @@ def contact(
     if csv_file is not None:
         import numpy as np
 
-        with _user_input("cannot write --csv: "):
+        with user_input("cannot write --csv: "):
             table = np.column_stack([
                 geo.y * 1e3, geo.r_left * 1e3, geo.r_right * 1e3, geo.delta_r * 1e3,
                 geo.delta_left, geo.delta_right, geo.roll * 1e3,
@@ -126,7 +136,7 @@ def contact(
     if png_file is not None:
         from railhunt.plots import plot_contact_geometry
 
-        with _user_input("cannot write --png: "):
+        with user_input("cannot write --png: "):
             plot_contact_geometry(geo, png_file)
     if as_json:
         data = {
@@ -138,7 +148,7 @@ def contact(
             "r_right_m": geo.r_right.tolist(), "delta_left_rad": geo.delta_left.tolist(),
             "delta_right_rad": geo.delta_right.tolist(), "roll_rad": geo.roll.tolist(),
         }
-        click.echo(json.dumps(_json_safe(data)))
+        click.echo(json.dumps(json_safe(data)))
         return
     i0 = int(abs(geo.y).argmin())
     click.echo(f"{w.name} on {r.name}, inclination {inclination:.4g}, gauge {gauge:g} mm, "

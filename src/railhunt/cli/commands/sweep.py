@@ -7,21 +7,11 @@ import math
 from pathlib import Path
 
 import click
-import numpy as np
 
-from railhunt.cli import (
-    CliError,
-    _build_vehicle,
-    _check_outputs,
-    _fmt,
-    _json_safe,
-    _number_range,
-    _show_progress,
-    _stdout_console,
-    _user_input,
-    _vehicle_options,
-    main,
-)
+from railhunt.cli.errors import CliError, user_input
+from railhunt.cli.options import build_vehicle, check_outputs, number_range, vehicle_options
+from railhunt.cli.output import fmt, json_safe, show_progress, stdout_console
+from railhunt.cli.rules import Excludes, Requires, command
 
 _SWEEP_HELP = """\
 Critical speeds and hunting frequency over a range of vehicle parameters.
@@ -61,7 +51,17 @@ Examples:
 
 
 #: Largest study the command line starts (a grid grows as the product of its --num).
-_MAX_POINTS = 1_000_000
+MAX_POINTS = 1_000_000
+
+RULES = (
+    Excludes("--resume", "--overwrite", "{a} and {b} exclude each other"),
+    Excludes("--scheduler", "--workers",
+             "--workers sets the local cluster; a --scheduler cluster has its own"),
+    Requires("--samples", "--design=random|lhs",
+             "--samples is for the random and lhs designs, not {design!r}"),
+    Excludes("--table1", ("--from", "--to", "--num", "--design!=lines", "--spacing!=linear"),
+             "--table1 sets the values itself: drop --from/--to/--num/--design/--spacing"),
+)  # fmt: skip
 
 
 def _parse_ties(ctx: click.Context, param: click.Parameter,
@@ -102,6 +102,8 @@ def _pair(names: tuple[str, ...], option: str, values: tuple, default: object = 
 
 def _ranges(names, froms, tos, nums, spacing, design):
     """NAME -> SI values (lines, grid) or (low, high) (random, lhs)."""
+    import numpy as np
+
     if len(set(names)) != len(names):
         raise CliError(f"a NAME is given twice: {', '.join(names)}")
     lows = _pair(names, "--from", froms)
@@ -128,7 +130,8 @@ def _ranges(names, froms, tos, nums, spacing, design):
     return out
 
 
-@main.command(help=_SWEEP_HELP, short_help="Parameter study: critical speeds and frequency.")
+@command("sweep", rules=RULES, help=_SWEEP_HELP,
+         short_help="Parameter study: critical speeds and frequency.")
 @click.argument("names", nargs=-1, metavar="NAME [NAME2 ...]")
 @click.option("--table1", is_flag=True,
               help="The paper's study: each Table 1 parameter (or each NAME of Table 1) over "
@@ -157,7 +160,7 @@ def _ranges(names, froms, tos, nums, spacing, design):
               help="Speed of the hunting-frequency run (km/h) [default: 300 for yaw-damper "
                    "parameters, 350 otherwise].")
 @click.option("--frequency-amplitude", "amplitude_mm", type=float, metavar="MM",
-              callback=_number_range("mm", 0.0, 20.0, optional=True),
+              callback=number_range("mm", 0.0, 20.0, optional=True),
               help="Release every wheelset from MM for the frequency run [default: run over "
                    "the critical-speed defect, as the paper's Sec. 3.3 defines it].")
 @click.option("--out", "out", type=click.Path(dir_okay=False, path_type=Path), required=True,
@@ -169,35 +172,26 @@ def _ranges(names, froms, tos, nums, spacing, design):
 @click.option("--scheduler", metavar="ADDRESS",
               help="Run on the Dask cluster of this scheduler (e.g. tcp://10.0.0.5:8786).")
 @click.option("--json", "as_json", is_flag=True, help="Print a JSON summary instead of a table.")
-@_vehicle_options
-def sweep(names, table1, per_section, froms, tos, nums, spacing, design, samples, seed, ties,
-          outputs, frequency_kmh, amplitude_mm, out, resume, overwrite, workers, scheduler,
-          as_json, vehicle_file, sets) -> None:  # fmt: skip
-    """``railhunt sweep`` (help text: _SWEEP_HELP)."""
+@vehicle_options
+def sweep_command(names, table1, per_section, froms, tos, nums, spacing, design, samples, seed,
+                  ties, outputs, frequency_kmh, amplitude_mm, out, resume, overwrite, workers,
+                  scheduler, as_json, vehicle_file, sets) -> None:  # fmt: skip
+    """``railhunt sweep`` (help text: ``_SWEEP_HELP``)."""
+    from railhunt import sweep
     from railhunt.studies.store import OUTPUTS, ResultFileError
-    from railhunt.studies.sweep import sweep as run_sweep
 
-    if resume and overwrite:
-        raise CliError("--resume and --overwrite exclude each other")
-    if scheduler and workers is not None:
-        raise CliError("--workers sets the local cluster; a --scheduler cluster has its own")
     if workers is not None and not 1 <= workers <= 1024:
         raise CliError(f"--workers {workers} is invalid: must be in [1, 1024]")
     chosen = tuple(dict.fromkeys(o.strip() for o in outputs.split(",") if o.strip()))
     bad = [o for o in chosen if o not in OUTPUTS]
     if bad or not chosen:
         raise CliError(f"--outputs {outputs}: choose from {', '.join(OUTPUTS)}")
-    _check_outputs(out=out)
-    vehicle = _build_vehicle(vehicle_file, sets)
-    if samples is not None and design not in ("random", "lhs"):
-        raise CliError(f"--samples is for the random and lhs designs, not {design!r}")
+    check_outputs(out=out)
+    vehicle = build_vehicle(vehicle_file, sets)
     if table1:
-        if froms or tos or nums or design != "lines" or spacing != "linear":
-            raise CliError("--table1 sets the values itself: drop --from/--to/--num/--design/"
-                           "--spacing")  # fmt: skip
-        from railhunt.studies.sections import table1_study
+        from railhunt import table1_study
 
-        with _user_input("--table1: "):
+        with user_input("--table1: "):
             parameters, table_ties = table1_study(per_section, names or None)
         ties = {**{f: (lead, 1.0) for f, lead in table_ties.items()}, **ties}
     elif not names:
@@ -206,29 +200,29 @@ def sweep(names, table1, per_section, froms, tos, nums, spacing, design, samples
         parameters = _ranges(names, froms, tos, nums, spacing, design)
         if design == "grid":
             size = math.prod(len(v) for v in parameters.values())
-            if size > _MAX_POINTS:
-                raise CliError(f"--design grid gives {size} points: at most {_MAX_POINTS} "
+            if size > MAX_POINTS:
+                raise CliError(f"--design grid gives {size} points: at most {MAX_POINTS} "
                                "(use --design lhs --samples N for large spaces)")  # fmt: skip
-    progress = _show_progress()
+    progress = show_progress()
     try:
-        with _user_input():
-            result = run_sweep(vehicle, parameters, chosen, design=design, samples=samples,
-                               seed=seed, ties=ties, frequency_speed_kmh=frequency_kmh,
-                               frequency_amplitude=None if amplitude_mm is None
-                               else amplitude_mm * 1e-3, out=out,
-                               resume=resume, overwrite=overwrite, scheduler=scheduler,
-                               workers=workers, progress=progress)  # fmt: skip
+        with user_input():
+            result = sweep(vehicle, parameters, chosen, design=design, samples=samples,
+                           seed=seed, ties=ties, frequency_speed_kmh=frequency_kmh,
+                           frequency_amplitude=None if amplitude_mm is None
+                           else amplitude_mm * 1e-3, out=out,
+                           resume=resume, overwrite=overwrite, scheduler=scheduler,
+                           workers=workers, progress=progress)  # fmt: skip
     except ResultFileError as exc:
         raise CliError(str(exc)) from None
     except KeyboardInterrupt:
-        from railhunt.studies.store import read_results
+        from railhunt import read_results
 
         done = len(read_results(out)) if out.exists() else 0
         click.echo(f"railhunt: interrupted: {done} points are in {out}; run the same command "
                    "with --resume to finish", err=True)  # fmt: skip
         raise SystemExit(130) from None
     if as_json:
-        click.echo(json.dumps(_json_safe({
+        click.echo(json.dumps(json_safe({
             "file": str(out), "points": result.meta["points"], "computed": result.computed,
             "resumed": result.resumed, "lost": result.lost, "elapsed_s": result.elapsed_s,
             "rows": result.rows}), indent=1))  # fmt: skip
@@ -243,10 +237,10 @@ def sweep(names, table1, per_section, froms, tos, nums, spacing, design, samples
 def _print_summary(result, out: Path) -> None:
     from rich.table import Table
 
-    console = _stdout_console()
+    console = stdout_console()
     rate = result.computed / result.elapsed_s if result.elapsed_s > 0 else math.nan
     click.echo(f"{result.meta['points']} points in {out}: {result.computed} computed "
-               f"({_fmt(rate, '.2f', 'points/s')}), {result.resumed} already there, "
+               f"({fmt(rate, '.2f', 'points/s')}), {result.resumed} already there, "
                f"{result.lost} lost; {result.elapsed_s:.1f} s")  # fmt: skip
     if len(result.rows) > 40:
         return
@@ -263,6 +257,6 @@ def _print_summary(result, out: Path) -> None:
         table.add_column(head, justify="right")
     for row in result.rows:
         table.add_row(*(f"{row[p]:.6g}" for p in params),
-                      *(_fmt(row[c], spec) for c, _, spec in shown),
+                      *(fmt(row[c], spec) for c, _, spec in shown),
                       *([row["frequency_source"]] if source else []), row["status"])  # fmt: skip
     console.print(table)

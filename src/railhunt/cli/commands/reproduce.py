@@ -9,7 +9,11 @@ from typing import Any
 
 import click
 
-from railhunt.cli import CliError, _show_progress, _stdout_console, main
+from railhunt.cli.errors import CliError
+from railhunt.cli.output import show_progress, spinner, stdout_console
+from railhunt.cli.rules import Excludes, command
+
+RULES = (Excludes("--scheduler", "--workers", "give either {a} or {b}, not both"),)
 
 
 @contextlib.contextmanager
@@ -37,7 +41,7 @@ def _dask_client(scheduler: str | None, workers: int | None) -> Iterator[Any]:
 @contextlib.contextmanager
 def _step_progress() -> Iterator[Callable[[str, str], None] | None]:
     """A rich display with one line per step on stderr (only on a terminal)."""
-    if not _show_progress():
+    if not show_progress():
         yield None
         return
     from rich.console import Console
@@ -58,13 +62,11 @@ def _step_progress() -> Iterator[Callable[[str, str], None] | None]:
         yield update
 
 
-def _with_unit(value: object, unit: str) -> str:
-    """A table cell: a number (or a bound such as '< 50') with its unit, text as it is."""
-    from railhunt.studies.reproduce import _show
-
+def _with_unit(value: object, text: str, unit: str) -> str:
+    """A table cell: ``text`` showing ``value``, a number (or a bound such as '< 50') with
+    its unit, other text as it is."""
     if value is None:
         return "not available"
-    text = _show(value)
     numeric = isinstance(value, int | float) or str(value)[:1] in "<>"
     return f"{text} {unit}" if unit and numeric else text
 
@@ -73,7 +75,8 @@ def _difference_style(agrees: bool | None) -> str:
     return "dim" if agrees is None else ("green" if agrees else "red")
 
 
-@main.command(short_help="Recompute the paper's Figs. 6-8, 10-13 into an HTML report.")
+@command("reproduce", rules=RULES,
+         short_help="Recompute the paper's Figs. 6-8, 10-13 into an HTML report.")
 @click.option("--out", "out_dir", required=True, metavar="DIR",
               type=click.Path(file_okay=False, path_type=Path),
               help="Folder for report.html, headline.json and the figures (created if "
@@ -87,7 +90,8 @@ def _difference_style(agrees: bool | None) -> str:
 @click.option("--workers", type=click.IntRange(min=1, max=256), metavar="N",
               help="Worker processes of the local Dask cluster (default: one per core; 1: "
               "no cluster, everything in this process).")  # fmt: skip
-def reproduce(out_dir: Path, quick: bool, scheduler: str | None, workers: int | None) -> None:
+def reproduce_command(out_dir: Path, quick: bool, scheduler: str | None,
+                      workers: int | None) -> None:  # fmt: skip
     """Recompute the paper's Figs. 6, 7, 8, 10-13 for its vehicle and compare its numbers.
 
     \b
@@ -98,8 +102,6 @@ def reproduce(out_dir: Path, quick: bool, scheduler: str | None, workers: int | 
     DIR/headline.json (machine readable) and DIR/fig6.png ... fig13.png.
     The full run takes a few minutes on two cores, --quick under one.
     """
-    if scheduler is not None and workers is not None:
-        raise CliError("give either --scheduler or --workers, not both")
     if out_dir.exists() and not out_dir.is_dir():
         raise CliError(f"--out {out_dir}: exists and is not a folder")
     try:
@@ -107,23 +109,21 @@ def reproduce(out_dir: Path, quick: bool, scheduler: str | None, workers: int | 
     except OSError as exc:
         raise CliError(f"--out {out_dir}: {exc.strerror or exc}") from None
 
-    from railhunt.cli import _spinner
-    from railhunt.studies.reproduce import reproduce as run_reproduce
-    from railhunt.vehicle import Vehicle
+    from railhunt import Vehicle, reproduce
 
     vehicle = Vehicle.paper2019()
-    with _spinner("loading the compiled model"):
+    with spinner("loading the compiled model"):
         # Compile (or load) numba's cache here, before any worker starts: workers that
         # compile the same cache at once can crash (numba issue #4807).
         from railhunt.studies.sweep import warm_up
 
         warm_up()
     stack = contextlib.ExitStack()
-    with _spinner("starting Dask workers"):
+    with spinner("starting Dask workers"):
         client = stack.enter_context(_dask_client(scheduler, workers))
     with stack, _step_progress() as progress:
-        report = run_reproduce(out_dir, quick=quick, client=client, progress=progress,
-                               vehicle=vehicle)  # fmt: skip
+        report = reproduce(out_dir, quick=quick, client=client, progress=progress,
+                           vehicle=vehicle)  # fmt: skip
 
     from rich.table import Table
 
@@ -132,10 +132,11 @@ def reproduce(out_dir: Path, quick: bool, scheduler: str | None, workers: int | 
         table.add_column(head, justify="left" if head == "quantity (where)" else "right")
     for row in report.headline:
         style = _difference_style(row.agrees)
-        table.add_row(f"{row.quantity} ({row.where})", _with_unit(row.paper, row.unit),
-                      _with_unit(row.railhunt, row.unit),
+        table.add_row(f"{row.quantity} ({row.where})",
+                      _with_unit(row.paper, row.paper_text, row.unit),
+                      _with_unit(row.railhunt, row.railhunt_text, row.unit),
                       f"[{style}]{row.difference}[/{style}]")  # fmt: skip
-    out = _stdout_console()
+    out = stdout_console()
     out.print(table)
     for step in report.steps:
         line = f"{step.title}: {step.status} ({step.seconds:.1f} s)"

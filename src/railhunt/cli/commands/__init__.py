@@ -1,0 +1,37 @@
+"""The commands of ``railhunt``, one module each (``critical-speed --method stochastic``
+reports from ``stochastic.py``); COMMANDS lists them in the order ``railhunt --help`` shows.
+"""
+
+from __future__ import annotations
+
+from railhunt.cli.commands.bifurcation import bifurcation_command
+from railhunt.cli.commands.contact import contact_command
+from railhunt.cli.commands.critical_speed import critical_speed_command
+from railhunt.cli.commands.eigen import eigen_command
+from railhunt.cli.commands.frequency import frequency_command
+from railhunt.cli.commands.parameters import parameters_command
+from railhunt.cli.commands.plot import plot_command
+from railhunt.cli.commands.reproduce import reproduce_command
+from railhunt.cli.commands.sections import sections_command
+from railhunt.cli.commands.simulate import simulate_command
+from railhunt.cli.commands.spectrogram import spectrogram_command
+from railhunt.cli.commands.sweep import sweep_command
+
+__all__ = ["COMMANDS"]
+
+#: Every command, in the order of ``railhunt --help``: one speed, then speed scans, then
+#: the contact geometry, measured signals, parameter studies and the paper's report.
+COMMANDS = (
+    simulate_command,
+    eigen_command,
+    critical_speed_command,
+    parameters_command,
+    bifurcation_command,
+    frequency_command,
+    contact_command,
+    spectrogram_command,
+    sweep_command,
+    sections_command,
+    plot_command,
+    reproduce_command,
+)

@@ -1,0 +1,241 @@
+"""``railhunt critical-speed``: nonlinear (the paper's method) and linear critical speeds.
+
+``--method stochastic`` runs over an irregular track instead; its run and report are in
+:mod:`railhunt.cli.commands.stochastic`.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+from pathlib import Path
+from typing import Any
+
+import click
+
+from railhunt.cli.errors import user_input
+from railhunt.cli.options import (
+    build_vehicle,
+    defect_options,
+    kmh_option,
+    method_options,
+    number_range,
+    random_track_options,
+    single_defect,
+    vehicle_options,
+)
+from railhunt.cli.output import (
+    fmt,
+    json_safe,
+    linear_critical_speed_line,
+    stdout_console,
+    trial_progress,
+)
+from railhunt.cli.rules import Excludes, Ordered, Requires, command
+
+RULES = (
+    Excludes("--method=stochastic", ("--amplitude", "--wavelength"),
+             "{b} describes the single defect and cannot be combined with --method stochastic "
+             "(which runs over an irregular track)"),
+    Requires(("--spectrum", "--seed", "--track-length", "--irregularity"), "--method=stochastic",
+             "{a} only applies with --method stochastic"),
+    Excludes(("--spectrum", "--seed", "--track-length"), "--irregularity",
+             "{a} cannot be combined with {b}: the measured track replaces the random one"),
+    Ordered("--tol", "--step",
+            "--tol {tol_kmh:g} km/h is invalid: must be <= --step {step_kmh:g} km/h"),
+)  # fmt: skip
+
+
+@command("critical-speed", rules=RULES, short_help="Nonlinear and linear critical speeds (km/h).")
+@defect_options(
+    "Peak lateral displacement of the track defect run over at each trial speed (mm), "
+    "within ±50 mm."
+)
+@kmh_option("--start", "start_kmh", 300.0, 800.0, "First trial speed (km/h).")
+@kmh_option("--step", "step_kmh", 10.0, 800.0,
+            "Step while bracketing the critical speed (km/h).")  # fmt: skip
+@kmh_option("--tol", "tol_kmh", 1.0, 800.0,
+            "Resolution of the bisection (km/h); at most --step.")  # fmt: skip
+@functools.partial(method_options, stochastic=True)
+@random_track_options(
+    "german-high",
+    "With --method stochastic: track spectrum of the lateral alignment: german-low, "
+    "german-high (German high-speed spectra, low/high disturbance) or fra-1 ... fra-6 "
+    "(US FRA track classes, 6 the best).",
+    "With --method stochastic:",
+    "With --method stochastic: run over this measured alignment instead",
+)
+@click.option(
+    "--track-length",
+    type=float,
+    default=2000.0,
+    show_default=True,
+    metavar="M",
+    callback=number_range("m", 200.0, 1e5, low_open=False),
+    help="With --method stochastic: length of the irregular track run over at each speed (m).",
+)
+@click.option(
+    "--json",
+    "as_json",
+    is_flag=True,
+    help="Print one JSON object (speeds in km/h; unknown values as null) instead of tables.",
+)
+@vehicle_options
+def critical_speed_command(
+    amplitude: float,
+    wavelength: float,
+    start_kmh: float,
+    step_kmh: float,
+    tol_kmh: float,
+    method: str,
+    dt: float | None,
+    spectrum: str,
+    seed: int,
+    track_length: float,
+    irregularity_file: Path | None,
+    as_json: bool,
+    vehicle_file: Path | None,
+    sets: dict[str, float],
+) -> None:
+    """Nonlinear and linear critical speeds: above which speed does it hunt?
+
+    \b
+    Nonlinear critical speed (the paper's method): at each trial speed the
+    vehicle runs over one lateral track defect and the leading wheelset's
+    motion is judged 'stable' (decays back to the centre line) or 'hunting'
+    (settles on a limit cycle, or derails). Starting at --start the speed is
+    stepped by --step until the verdict changes, then bisected to --tol. The
+    result is the highest stable speed (km/h).
+
+    \b
+    Linear critical speed: where the least damped eigenvalue of the
+    linearised model crosses into instability (see 'railhunt eigen'). It is
+    usually higher: below it small disturbances die out, but a large enough
+    disturbance can already throw the vehicle onto a hunting limit cycle,
+    which is why the nonlinear value is the one that matters in service.
+
+    \b
+    Stochastic critical speed (--method stochastic, the paper's excitation
+    type (c)): at each trial speed the vehicle runs over a random irregular
+    track (--spectrum, --seed, --track-length) or a measured one
+    (--irregularity FILE); the acceptance-test instability criterion (EN 14363
+    style) compares the 100 m sliding rms of the sum of guiding forces and of
+    the bogie frame lateral acceleration, band-passed f0 +/- 2 Hz, with their
+    limits. The result is the lowest speed that breaks the criterion (km/h).
+    """
+    vehicle = build_vehicle(vehicle_file, sets)
+    if method == "stochastic":
+        from railhunt.cli.commands.stochastic import report_stochastic_critical_speed
+
+        report_stochastic_critical_speed(
+            vehicle, spectrum=spectrum, seed=seed, track_length=track_length,
+            irregularity_file=irregularity_file, start_kmh=start_kmh, step_kmh=step_kmh,
+            tol_kmh=tol_kmh, dt=dt, as_json=as_json,
+        )  # fmt: skip
+        return
+
+    from railhunt import critical_speed, linear_critical_speed
+
+    excitation = single_defect(amplitude, wavelength)
+
+    with trial_progress("critical speed") as on_trial, user_input():
+        result = critical_speed(
+            vehicle,
+            excitation=excitation,
+            start_kmh=start_kmh,
+            step_kmh=step_kmh,
+            tol_kmh=tol_kmh,
+            method=method,
+            dt=dt,
+            progress=on_trial,
+        )
+        on_trial(None)
+        linear = linear_critical_speed(vehicle)
+
+    if as_json:
+        click.echo(
+            json.dumps(
+                _critical_json(vehicle, excitation, tol_kmh, result, linear), allow_nan=False
+            )
+        )
+        return
+
+    from rich.table import Table
+
+    table = Table(
+        title=f"critical speed trials of {vehicle.name} "
+        f"({amplitude:g} mm x {wavelength:g} m defect, {method})"
+    )
+    for head in (
+        "#",
+        "speed (km/h)",
+        "verdict",
+        "amplitude (mm)",
+        "growth (1/s)",
+        "simulated (s)",
+        "note",
+    ):
+        table.add_column(head, justify="left" if head in ("verdict", "note") else "right")
+    for i, trial in enumerate(result.trials, 1):
+        note = trial.status if trial.status != "ok" else ("" if trial.decided else "undecided")
+        table.add_row(
+            str(i),
+            f"{trial.speed_kmh:g}",
+            trial.verdict,
+            fmt(1e3 * trial.amplitude, ".3f"),
+            fmt(trial.growth_rate, ".3g"),
+            f"{trial.duration:.1f}",
+            note,
+            style="red" if trial.verdict == "hunting" else "green",
+        )
+    console = stdout_console()
+    console.print(table)
+    console.print(_nonlinear_line(result, tol_kmh))
+    console.print(linear_critical_speed_line(linear))
+
+
+def _nonlinear_line(result: Any, tol_kmh: float) -> str:
+    if result.bracketed:
+        return (
+            f"nonlinear critical speed: {result.speed_kmh:g} km/h (highest stable speed; "
+            f"hunting at {result.first_hunting_kmh:g} km/h, resolution {tol_kmh:g} km/h)"
+        )
+    verdicts = {t.verdict for t in result.trials}
+    if verdicts == {"stable"}:
+        why = "every trial speed up to 800 km/h was stable"
+    else:
+        why = "every trial speed down to 20 km/h was hunting"
+    return f"nonlinear critical speed: not found ({why})"
+
+
+def _critical_json(
+    vehicle: Any, excitation: Any, tol_kmh: float, result: Any, linear: Any
+) -> dict[str, Any]:
+    data = {
+        "method": "defect",
+        "nonlinear_critical_speed_kmh": result.speed_kmh,
+        "linear_critical_speed_kmh": linear.speed_kmh,
+        "linear_hunting_frequency_hz": linear.frequency_hz,
+        "linear_crossing_is_hunting_mode": bool(linear.is_hunting_mode),
+        "bracketed": bool(result.bracketed),
+        "first_hunting_speed_kmh": result.first_hunting_kmh,
+        "tol_kmh": tol_kmh,
+        "vehicle": vehicle.name,
+        "excitation": {
+            "amplitude_mm": excitation.amplitude * 1e3,
+            "wavelength_m": excitation.wavelength,
+        },
+        "trials": [
+            {
+                "speed_kmh": t.speed_kmh,
+                "verdict": t.verdict,
+                "amplitude_mm": t.amplitude * 1e3,
+                "growth_rate_per_s": t.growth_rate,
+                "duration_s": t.duration,
+                "decided": bool(t.decided),
+                "status": t.status,
+            }
+            for t in result.trials
+        ],
+    }
+    return json_safe(data)

@@ -1,0 +1,206 @@
+"""``railhunt simulate``: one run at one speed, over a defect, an offset or an irregular track."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import click
+
+from railhunt.cli.errors import user_input
+from railhunt.cli.options import (
+    build_vehicle,
+    check_outputs,
+    defect_options,
+    file_option,
+    measured_track,
+    method_options,
+    number_range,
+    random_track_options,
+    single_defect,
+    vehicle_options,
+)
+from railhunt.cli.output import spinner
+from railhunt.cli.rules import Excludes, Ordered, Requires, command
+
+RULES = (
+    Ordered("--output-dt", "--duration",
+            "--output-dt {output_dt:g} s is invalid: must be <= --duration {duration:g} s"),
+    Excludes("--initial-displacement", ("--amplitude", "--wavelength"),
+             "{a} cannot be combined with {b}: choose either a track defect or an initial "
+             "displacement"),
+    Excludes("--spectrum", "--irregularity", "{a} cannot be combined with {b}: choose one track"),
+    Excludes(("--spectrum", "--irregularity"),
+             ("--amplitude", "--wavelength", "--initial-displacement"),
+             "{a} cannot be combined with {b}: choose one excitation"),
+    Requires("--seed", "--spectrum", "{a} only applies with {b}"),
+)  # fmt: skip
+
+
+@command("simulate", rules=RULES, short_help="Simulate one speed: time history and phase plane.")
+@click.option(
+    "--speed",
+    type=float,
+    required=True,
+    metavar="KMH",
+    callback=number_range("km/h", 0.0, 1000.0),
+    help="Forward speed (km/h).",
+)
+@click.option(
+    "--duration",
+    type=float,
+    default=10.0,
+    show_default=True,
+    metavar="S",
+    callback=number_range("s", 0.0, 1e5),
+    help="Simulated time (s).",
+)
+@defect_options("Peak lateral displacement of the single track defect (mm), within ±50 mm.")
+@click.option(
+    "--initial-displacement",
+    type=float,
+    default=None,
+    metavar="MM",
+    callback=number_range("mm", -50.0, 50.0, low_open=False, optional=True),
+    help="Instead of a track defect, start with all four wheelsets displaced "
+    "laterally by this much (mm) on ideal track.",
+)
+@random_track_options(
+    None,
+    "Instead of a track defect, run over a random lateral alignment following this "
+    "track spectrum (german-low, german-high, fra-1 ... fra-6), long enough for the whole "
+    "run, and report the acceptance-test instability criterion.",
+    "With --spectrum:",
+    "Instead of a track defect, run over this measured alignment",
+)
+@method_options
+@click.option(
+    "--output-dt",
+    type=float,
+    default=None,
+    metavar="S",
+    callback=number_range("s", optional=True),
+    help="Keep one output sample per this interval (s). Default: every step.",
+)
+@file_option("--csv", "csv_file", "Write all channels (SI units, header with units).")
+@file_option("--png", "png_file", "Plot the leading wheelset: lateral displacement (mm) vs "
+             "time and its phase plane after 3 s.")  # fmt: skip
+@vehicle_options
+def simulate_command(
+    speed: float,
+    duration: float,
+    amplitude: float,
+    wavelength: float,
+    initial_displacement: float | None,
+    spectrum: str | None,
+    seed: int,
+    irregularity_file: Path | None,
+    method: str,
+    dt: float | None,
+    output_dt: float | None,
+    csv_file: Path | None,
+    png_file: Path | None,
+    vehicle_file: Path | None,
+    sets: dict[str, float],
+) -> None:
+    """Simulate the vehicle at one constant speed on straight track.
+
+    \b
+    By default the vehicle runs over a single lateral alignment defect (a
+    smooth one-sided bump of --amplitude mm over --wavelength m, 1 m ahead)
+    followed by ideal track; with --initial-displacement it instead starts
+    with its wheelsets offset on ideal track. Below the critical speed the
+    motion decays back to the centre line; above it the leading wheelset
+    settles on a hunting limit cycle (or derails beyond 25 mm).
+
+    \b
+    With --spectrum NAME (or --irregularity FILE) it runs over an irregular
+    track instead (the paper's excitation type (c)), each wheelset meeting it
+    in turn, and prints the acceptance-test instability criterion (100 m
+    sliding rms of the sum of guiding forces and of the bogie frame lateral
+    acceleration, band-passed f0 +/- 2 Hz, against their limits).
+
+    Prints the run's status and the leading wheelset's peak and final
+    lateral amplitude (mm); --csv and --png save the details.
+    """
+    check_outputs(csv=csv_file, png=png_file)
+    tracks = (("--spectrum", spectrum), ("--irregularity", irregularity_file))
+    irregular = [flag for flag, value in tracks if value]
+    vehicle = build_vehicle(vehicle_file, sets)
+
+    import numpy as np
+
+    from railhunt import InitialDisplacement, simulate
+
+    if initial_displacement is not None:
+        with user_input():
+            excitation: Any = InitialDisplacement(amplitude=initial_displacement * 1e-3)
+        described = f"all wheelsets displaced by {initial_displacement:g} mm"
+    elif irregular:
+        from railhunt import track_irregularity
+        from railhunt.units import kmh_to_ms
+
+        with user_input(f"{irregular[0]}: "):
+            if spectrum:
+                length = min(max(kmh_to_ms(speed) * duration, 200.0), 1e5)
+                excitation = track_irregularity(spectrum, length=length, seed=seed)
+                described = f"{spectrum} irregularity, seed {seed}"
+            else:
+                excitation = measured_track(irregularity_file)
+                described = f"measured alignment {irregularity_file}"
+        described += f", {excitation.length:g} m, rms {excitation.rms * 1e3:.2f} mm"
+    else:
+        excitation = single_defect(amplitude, wavelength)
+        described = f"{amplitude:g} mm x {wavelength:g} m lateral bump at {excitation.start:g} m"
+    with spinner(f"simulating {duration:g} s at {speed:g} km/h ..."), user_input():
+        result = simulate(
+            vehicle,
+            speed,
+            duration=duration,
+            excitation=excitation,
+            method=method,
+            dt=dt,
+            output_dt=output_dt,
+        )
+
+    t = result.t
+    y = np.abs(result["y_w1"]) * 1e3
+    final = float(y[t >= t[-1] - 1.0].max())
+    note = "max |y_w1| over the last 1 s"
+    if result.excitation_end > t[-1] and not irregular:
+        note += "; the run ended before the last wheelset left the defect"
+    click.echo(f"vehicle:    {vehicle.name}")
+    click.echo(f"speed:      {speed:g} km/h, {method}, {t[-1]:g} s simulated")
+    click.echo(f"excitation: {described}")
+    click.echo(f"status:     {result.status} ({result.message})")
+    click.echo(f"y_w1:       peak {y.max():.3f} mm, final amplitude {final:.3f} mm ({note})")
+    if irregular:
+        _print_criterion(result, vehicle)
+    if csv_file is not None:
+        with user_input("cannot write --csv: "):
+            result.to_csv(csv_file)
+        click.echo(f"csv:        {csv_file} ({t.size} rows, {len(result.channel_names)} channels)")
+    if png_file is not None:
+        from railhunt.plots import plot_time_history
+
+        with spinner("plotting ..."), user_input("cannot write --png: "):
+            plot_time_history(result, png_file)
+        click.echo(f"png:        {png_file}")
+
+
+def _print_criterion(result: Any, vehicle: Any) -> None:
+    """The acceptance-test instability criterion of a run over an irregular track."""
+    from railhunt import assess_stability
+
+    with user_input():
+        a = assess_stability(result, vehicle)
+    if a.distance.size:
+        click.echo(
+            f"criterion:  {a.verdict} (f0 {a.f0_hz:.2f} Hz; ΣY rms max "
+            f"{a.sum_y_rms.max() / 1e3:.2f} kN = {a.sum_y_ratio:.2f} x limit "
+            f"{a.sum_y_limit / 1e3:.2f} kN; bogie frame rms max "
+            f"{a.acceleration_rms.max():.2f} m/s^2 = {a.acceleration_ratio:.2f} x limit "
+            f"{a.acceleration_limit:.2f} m/s^2)"
+        )
+    else:
+        click.echo("criterion:  not evaluated (the run covers less than 100 m of track)")

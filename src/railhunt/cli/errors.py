@@ -1,0 +1,66 @@
+"""Errors of the command line: every user error is one ``railhunt: error: ...`` line.
+
+:class:`CliError` is the one error a command raises for bad input (exit status 2);
+:func:`user_input` turns the library's ``ValueError`` and ``OSError`` into one, and
+:func:`one_line_usage_errors` does the same for click's own usage errors.
+"""
+
+from __future__ import annotations
+
+import contextlib
+from collections.abc import Iterator
+from typing import Any
+
+import click
+
+__all__ = ["PROG", "CliError", "one_line_usage_errors", "user_input"]
+
+#: Name of the program in messages and usage lines.
+PROG = "railhunt"
+
+_NO_ARGS_IS_HELP = getattr(click.exceptions, "NoArgsIsHelpError", ())
+
+
+class CliError(click.ClickException):
+    """A user error: shown as one ``railhunt: error: ...`` line, exit status 2."""
+
+    exit_code = 2
+
+    def __init__(self, message: str) -> None:
+        super().__init__(" ".join(str(message).split()))
+
+    def show(self, file: Any = None) -> None:
+        """Write the one-line message to stderr (``file`` is ignored)."""
+        click.echo(f"{PROG}: error: {self.format_message()}", err=True)
+
+
+@contextlib.contextmanager
+def one_line_usage_errors() -> Iterator[None]:
+    """Turn click's multi-line usage errors into a :class:`CliError`."""
+    try:
+        yield
+    except _NO_ARGS_IS_HELP:
+        raise
+    except click.UsageError as exc:
+        message = exc.format_message()
+        if exc.ctx is not None:
+            message += f" (see '{exc.ctx.command_path} --help')"
+        raise CliError(message) from None
+
+
+@contextlib.contextmanager
+def user_input(prefix: str = "") -> Iterator[None]:
+    """Report ``ValueError`` (invalid inputs) and ``OSError`` (files) as a :class:`CliError`.
+
+    Parameters
+    ----------
+    prefix : str
+        Put before the message, e.g. ``"--irregularity: "`` or ``"cannot write --csv: "``.
+    """
+    try:
+        yield
+    except OSError as exc:
+        where = f"{exc.filename}: " if exc.filename else ""
+        raise CliError(f"{prefix}{where}{exc.strerror or exc}") from None
+    except ValueError as exc:
+        raise CliError(f"{prefix}{exc}") from None

@@ -1,0 +1,382 @@
+"""Options shared by the commands, with their checks, and what they build.
+
+The vehicle (``--vehicle``/``--set``), number ranges, speeds in km/h, the single track
+defect (``--amplitude``/``--wavelength``), the integrator (``--method``/``--dt``), a random
+or measured track (``--spectrum``/``--seed``/``--irregularity``), output files and a sweep's
+results file. Units are converted here, at the edge: the library is called in SI units.
+The library is imported inside the functions, so ``railhunt --help`` stays fast.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import click
+
+from railhunt.cli.errors import CliError, user_input
+
+if TYPE_CHECKING:
+    from railhunt.irregularity import TrackIrregularity
+    from railhunt.track import SingleDefect
+    from railhunt.vehicle import Vehicle
+
+__all__ = [
+    "MEASURED_TAPER",
+    "build_vehicle",
+    "check_outputs",
+    "defect_options",
+    "file_option",
+    "initial_amplitude_option",
+    "kmh_option",
+    "load_results",
+    "measured_track",
+    "method_options",
+    "number_range",
+    "random_track_options",
+    "results_argument",
+    "single_defect",
+    "speed_count",
+    "vehicle_options",
+]
+
+Decorator = Callable[[Callable[..., Any]], Callable[..., Any]]
+
+#: Fade-in and fade-out (m) applied to measured alignments on the command line.
+MEASURED_TAPER = 20.0
+
+
+# --------------------------------------------------------------------------- numbers
+
+
+def number_range(
+    unit: str,
+    low: float = 0.0,
+    high: float = math.inf,
+    low_open: bool = True,
+    optional: bool = False,
+) -> Callable[[click.Context, click.Parameter, float | None], float | None]:
+    """Option callback: a finite number in ``(low, high]`` (or ``[low, high]``).
+
+    Parameters
+    ----------
+    unit : str
+        Unit of the option, shown in the error (e.g. ``"km/h"``).
+    low, high : float
+        Bounds, in ``unit``.
+    low_open : bool
+        False: ``low`` itself is allowed.
+    optional : bool
+        True: the option may be left out (None).
+    """
+
+    def check(ctx: click.Context, param: click.Parameter, value: float | None) -> float | None:
+        if value is None and optional:
+            return None
+        above = value > low if low_open else value >= low
+        if value is None or not (math.isfinite(value) and above and value <= high):
+            left = "(" if low_open else "["
+            hi = "inf)" if math.isinf(high) else f"{high:g}]"
+            raise click.BadParameter(
+                f"{value:g} {unit} is not a valid value: must be finite and in "
+                f"{left}{low:g}, {hi} {unit}"
+            )
+        return value
+
+    return check
+
+
+def kmh_option(flag: str, dest: str, default: float, high: float, help: str) -> Decorator:
+    """A speed option in km/h, finite and in ``(0, high]``."""
+    return click.option(
+        flag,
+        dest,
+        type=float,
+        default=default,
+        show_default=True,
+        metavar="KMH",
+        callback=number_range("km/h", 0.0, high),
+        help=help,
+    )
+
+
+def speed_count(from_kmh: float, to_kmh: float, step_kmh: float, most: int) -> int:
+    """Number of speeds ``from, from + step, ... <= to`` of a ``--from/--to/--step`` scan.
+
+    Raises
+    ------
+    CliError
+        When ``--to`` is below ``--from`` or the scan holds more than ``most`` speeds.
+    """
+    if to_kmh < from_kmh:
+        raise CliError(f"--to {to_kmh:g} km/h is below --from {from_kmh:g} km/h")
+    n = int(math.floor((to_kmh - from_kmh) / step_kmh + 1e-9)) + 1
+    if n > most:
+        raise CliError(f"--step {step_kmh:g} km/h gives {n} speeds: at most {most} are allowed")
+    return n
+
+
+def initial_amplitude_option(help: str) -> Decorator:
+    """``--initial-amplitude MM``: a release from a lateral displacement, in ``(0, 20]`` mm."""
+    return click.option("--initial-amplitude", "initial_mm", type=float, default=3.0,
+                        show_default=True, metavar="MM",
+                        callback=number_range("mm", 0.0, 20.0), help=help)  # fmt: skip
+
+
+# --------------------------------------------------------------------------- vehicle
+
+
+def _parse_set(
+    ctx: click.Context, param: click.Parameter, items: tuple[str, ...]
+) -> dict[str, float]:
+    """Option callback of ``--set``: ``NAME=VALUE`` items to a dict of checked SI floats."""
+    from railhunt.vehicle import UnknownParameterError, validate_value
+
+    changes: dict[str, float] = {}
+    for item in items:
+        name, sep, text = item.partition("=")
+        name, text = name.strip(), text.strip()
+        if not sep or not name or not text:
+            raise click.BadParameter(
+                f"{item!r} is not of the form NAME=VALUE (SI units), e.g. --set C_d1=150e3"
+            )
+        try:
+            value = float(text)
+        except ValueError:
+            raise click.BadParameter(
+                f"{name}={text}: {text!r} is not a number (give the SI value, e.g. 1.5e5)"
+            ) from None
+        try:
+            changes[name] = validate_value(name, value)
+        except UnknownParameterError as exc:
+            message = str(exc)
+            if not exc.suggestions:
+                message = f"unknown vehicle parameter {name!r}; 'railhunt parameters' lists them"
+            raise click.BadParameter(f"{name}={text}: {message}") from None
+        except ValueError as exc:
+            raise click.BadParameter(f"{name}={text}: {exc}") from None
+    return changes
+
+
+def _vehicle_source(
+    ctx: click.Context, param: click.Parameter, value: str | None
+) -> Path | str | None:
+    """``--vehicle``: an existing file, else the name of a shipped vehicle."""
+    if value is None:
+        return None
+    path = Path(value)
+    if path.is_file():
+        return path
+    from railhunt.vehicle import shipped_vehicles
+
+    names = shipped_vehicles()
+    if value in names:
+        return value
+    raise click.BadParameter(
+        f"{value!r} is neither a file nor a shipped vehicle ({', '.join(names)})"
+    )
+
+
+def vehicle_options(func: Callable[..., Any]) -> Callable[..., Any]:
+    """Add ``--vehicle FILE|NAME`` and repeatable ``--set NAME=VALUE`` to a command.
+
+    The command receives ``vehicle_file`` (a path, a shipped vehicle's name or None) and
+    ``sets`` (parameter name to checked SI value); :func:`build_vehicle` makes the vehicle.
+    """
+    func = click.option(
+        "--set",
+        "sets",
+        metavar="NAME=VALUE",
+        multiple=True,
+        callback=_parse_set,
+        help="Change one vehicle parameter, in SI units (repeatable), e.g. --set C_d1=150e3 "
+        "(yaw damper first-stage damping, N*s/m). 'railhunt parameters' lists the names.",
+    )(func)
+    func = click.option(
+        "--vehicle",
+        "vehicle_file",
+        metavar="FILE|NAME",
+        callback=_vehicle_source,
+        help="Vehicle TOML file (SI units), or the name of a vehicle shipped with railhunt: "
+        "paper2019; s1002_uic60 (the paper's vehicle with S1002 wheels on UIC60 rails 1:40, "
+        "fitted polynomials); s1002_uic60_table (the same with the contact geometry "
+        "tabulated from the profiles). Default: paper2019.",
+    )(func)
+    return func
+
+
+def build_vehicle(vehicle_file: Path | str | None, sets: dict[str, float]) -> Vehicle:
+    """The vehicle of ``--vehicle`` (or paper2019) with the ``--set`` changes applied."""
+    from railhunt import Vehicle, load_vehicle
+
+    with user_input():
+        if vehicle_file is None:
+            vehicle = Vehicle.paper2019()
+        elif isinstance(vehicle_file, str):
+            vehicle = Vehicle.shipped(vehicle_file)
+        else:
+            vehicle = load_vehicle(vehicle_file)
+    if sets:
+        given = ", ".join(f"{k}={v:g}" for k, v in sets.items())
+        with user_input(f"--set {given}: "):
+            vehicle = vehicle.replace(name=f"{vehicle.name} with {given}", **sets)
+    return vehicle
+
+
+# --------------------------------------------------------------------------- excitation
+
+
+def defect_options(amplitude_help: str) -> Decorator:
+    """Add ``--amplitude`` (mm) and ``--wavelength`` (m) of the single track defect."""
+
+    def decorate(func: Callable[..., Any]) -> Callable[..., Any]:
+        func = click.option(
+            "--wavelength",
+            type=float,
+            default=20.0,
+            show_default=True,
+            metavar="M",
+            callback=number_range("m", 0.5, 1000.0, low_open=False),
+            help="Length of the single track defect along the track (m).",
+        )(func)
+        return click.option(
+            "--amplitude",
+            type=float,
+            default=8.0,
+            show_default=True,
+            metavar="MM",
+            callback=number_range("mm", -50.0, 50.0, low_open=False),
+            help=amplitude_help,
+        )(func)
+
+    return decorate
+
+
+def single_defect(amplitude_mm: float, wavelength: float) -> SingleDefect:
+    """The single track defect the defect options describe (``amplitude_mm`` in mm to m)."""
+    from railhunt import SingleDefect
+
+    with user_input():
+        return SingleDefect(amplitude=amplitude_mm * 1e-3, wavelength=wavelength)
+
+
+def random_track_options(
+    default: str | None, spectrum_help: str, seed_context: str, irregularity_help: str
+) -> Decorator:
+    """Add ``--spectrum NAME``, ``--seed N`` (a random track) and ``--irregularity FILE``
+    (a measured one) to a command."""
+
+    def decorate(func: Callable[..., Any]) -> Callable[..., Any]:
+        func = click.option(
+            "--irregularity",
+            "irregularity_file",
+            type=click.Path(exists=True, dir_okay=False, path_type=Path),
+            metavar="FILE",
+            help=f"{irregularity_help} (CSV with columns 'distance' and 'alignment', units "
+            "[m] or [mm] in the header; shifted to start at 0 m and faded in and out over "
+            "20 m).",
+        )(func)
+        func = click.option(
+            "--seed",
+            type=click.IntRange(min=0),
+            default=1,
+            show_default=True,
+            help=f"{seed_context} seed of the random track (same seed, same track).",
+        )(func)
+        return click.option(
+            "--spectrum",
+            default=default,
+            show_default=default is not None,
+            metavar="NAME",
+            help=spectrum_help,
+        )(func)
+
+    return decorate
+
+
+def measured_track(path: Path) -> TrackIrregularity:
+    """The measured alignment of ``path``, starting at 0 m, faded in and out over 20 m
+    (or over half the record when it is shorter than 40 m)."""
+    from railhunt import load_irregularity
+
+    raw = load_irregularity(path)
+    return load_irregularity(path, taper=min(MEASURED_TAPER, raw.length / 2))
+
+
+def method_options(func: Callable[..., Any], stochastic: bool = False) -> Callable[..., Any]:
+    """Add ``--method`` and ``--dt`` to a command (``stochastic``: also the search method)."""
+    func = click.option(
+        "--dt",
+        type=float,
+        default=None,
+        metavar="S",
+        callback=number_range("s", 0.0, 0.01, optional=True),
+        help="Time step of the fixed-step rk4 integrator (s). Default: chosen from the "
+        "model's fastest dynamics (1 ms for the paper's vehicle).",
+    )(func)
+    choices = ["rk4", "dopri5"] + (["stochastic"] if stochastic else [])
+    text = (
+        "Integrator: classical fixed-step Runge-Kutta (the paper's) or adaptive "
+        "Dormand-Prince 5(4)."
+    )
+    if stochastic:
+        text = (
+            "rk4, dopri5: the single-defect method with that integrator (classical "
+            "fixed-step Runge-Kutta, the paper's, or adaptive Dormand-Prince 5(4)). "
+            "stochastic: run (with rk4) over a random irregular track instead and find the "
+            "lowest speed that breaks the acceptance-test instability criterion (EN 14363 "
+            "style)."
+        )
+    func = click.option(
+        "--method",
+        type=click.Choice(choices),
+        default="rk4",
+        show_default=True,
+        help=text,
+    )(func)
+    return func
+
+
+# --------------------------------------------------------------------------- files
+
+
+def file_option(flag: str, dest: str, help: str, metavar: str | None = "FILE") -> Decorator:
+    """An output file option (``--png FILE``, ``--csv FILE``, ...); see :func:`check_outputs`."""
+    return click.option(flag, dest, type=click.Path(dir_okay=False, path_type=Path),
+                        metavar=metavar, help=help)  # fmt: skip
+
+
+def check_outputs(**files: Path | None) -> None:
+    """Fail early (before a long run) when an output file's folder does not exist.
+
+    Parameters
+    ----------
+    **files : Path or None
+        Output files by option name without the dashes (``csv=...``, ``png=...``).
+    """
+    for option, path in files.items():
+        if path is not None and not path.resolve().parent.is_dir():
+            raise CliError(f"--{option} {path}: folder {str(path.parent)!r} does not exist")
+
+
+#: The RESULTS argument of the commands that read a sweep's results file.
+results_argument = click.argument(
+    "results",
+    metavar="RESULTS",
+    type=click.Path(exists=True, dir_okay=False, path_type=Path),
+)
+
+
+def load_results(results: Path, read: Callable[[Path], Any]) -> Any:
+    """Run ``read(results)``; an invalid file becomes one ``railhunt: error:`` line."""
+    try:
+        return read(results)
+    except OSError as exc:
+        raise CliError(f"{results}: {exc.strerror or exc}") from None
+    except (ValueError, KeyError, ImportError) as exc:  # ImportError: Parquet without pyarrow
+        text = str(exc.args[0]) if isinstance(exc, KeyError) and exc.args else str(exc)
+        if str(results) not in text:
+            text = f"{results}: {text}"
+        raise CliError(text) from None

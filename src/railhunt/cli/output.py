@@ -1,0 +1,133 @@
+"""What the commands print: consoles, progress displays, numbers, JSON, shared report lines.
+
+Tables and lines go to stdout through :func:`stdout_console`; progress displays go to
+stderr and only on a terminal (never in pipes, logs or tests); ``--json`` output goes
+through :func:`json_safe` so that NaN and infinities become ``null``.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import sys
+from collections.abc import Callable, Iterator
+from typing import Any
+
+__all__ = [
+    "fmt",
+    "json_safe",
+    "linear_critical_speed_line",
+    "show_progress",
+    "spinner",
+    "stdout_console",
+    "trial_progress",
+]
+
+
+def show_progress() -> bool:
+    """Progress displays only when stderr is a terminal (never in pipes, logs or tests)."""
+    try:
+        return sys.stderr.isatty()
+    except (AttributeError, ValueError):
+        return False
+
+
+@contextlib.contextmanager
+def spinner(text: str) -> Iterator[None]:
+    """A rich spinner on stderr while a step runs (only on a terminal)."""
+    if not show_progress():
+        yield
+        return
+    from rich.console import Console
+
+    with Console(stderr=True).status(text):
+        yield
+
+
+@contextlib.contextmanager
+def trial_progress(search: str, count: bool = True) -> Iterator[Callable[[Any], None]]:
+    """A callback showing each trial of a critical-speed search (a no-op off a terminal).
+
+    Parameters
+    ----------
+    search : str
+        Name of the search in the display, e.g. ``"critical speed"``.
+    count : bool
+        Also count the trials.
+
+    Yields
+    ------
+    callable
+        Called with each trial (``speed_kmh``, ``verdict``); with ``None`` it switches the
+        display to the linear analysis that follows.
+    """
+    if not show_progress():
+        yield lambda trial: None
+        return
+    from rich.console import Console
+    from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
+
+    columns = (
+        SpinnerColumn(),
+        TextColumn("{task.description}"),
+        *([TextColumn("[dim]{task.completed} trials")] if count else []),
+        TimeElapsedColumn(),
+    )
+    first = "first trial" if count else "first run"
+    with Progress(*columns, console=Console(stderr=True), transient=True) as progress:
+        task = progress.add_task(f"{search}: {first} ...", total=None)
+
+        def on_trial(trial: Any) -> None:
+            if trial is None:
+                progress.update(task, description="linear stability analysis ...")
+                return
+            progress.update(
+                task,
+                advance=1 if count else 0,
+                description=f"{search}: {trial.speed_kmh:g} km/h was {trial.verdict}",
+            )
+
+        yield on_trial
+
+
+def stdout_console() -> Any:
+    """A rich console on stdout (no automatic highlighting of numbers)."""
+    from rich.console import Console
+
+    return Console(highlight=False)
+
+
+def fmt(value: float | None, spec: str, unit: str = "") -> str:
+    """``value`` formatted with ``spec`` (and ``unit``), or ``n/a`` when None or not finite."""
+    if value is None or not math.isfinite(value):
+        return "n/a"
+    text = format(value, spec)
+    return f"{text} {unit}" if unit else text
+
+
+def json_safe(obj: Any) -> Any:
+    """Recursively convert to JSON types, NaN and infinities to ``None``."""
+    if isinstance(obj, dict):
+        return {str(k): json_safe(v) for k, v in obj.items()}
+    if isinstance(obj, list | tuple):
+        return [json_safe(v) for v in obj]
+    if isinstance(obj, bool) or obj is None or isinstance(obj, str):
+        return obj
+    if isinstance(obj, int):
+        return obj
+    try:
+        value = float(obj)
+    except (TypeError, ValueError):
+        return str(obj)
+    return value if math.isfinite(value) else None
+
+
+def linear_critical_speed_line(linear: Any) -> str:
+    """The line reporting a :func:`railhunt.linear_critical_speed` result (km/h, Hz)."""
+    if not math.isfinite(linear.speed_kmh):
+        return "linear critical speed: none below 1000 km/h (centred running stays stable)"
+    mode = "hunting mode" if linear.is_hunting_mode else "not the hunting mode"
+    return (
+        f"linear critical speed: {linear.speed_kmh:.1f} km/h "
+        f"(Hopf point; {mode} at {linear.frequency_hz:.2f} Hz)"
+    )
