@@ -190,6 +190,7 @@ def _segments(s0: float, pieces: list[tuple[float, float, float, float, float]])
     cant vary linearly along it (a transition when start and end differ). Heading and its
     integral are carried on exactly from piece to piece, starting at 0.
     """
+    pieces = [p for p in pieces if p[0] > 0.0]  # a curve of zero length has no row
     rows = np.zeros((len(pieces), N_ROUTE))
     th0, ph0 = 0.0, 0.0
     s = s0
