@@ -45,7 +45,7 @@ def test_curve_geometry_and_cant_deficiency() -> None:
 
 @pytest.mark.parametrize(("field", "value"), [
     ("radius", 0.0), ("radius", -100.0), ("radius", math.inf), ("radius", math.nan),
-    ("radius", 10.0), ("cant", -0.01), ("cant", 0.5), ("transition", -1.0),
+    ("radius", 10.0), ("cant", -0.01), ("cant", 0.6), ("transition", -1.0),
     ("direction", "up"), ("length", -5.0), ("start", -1.0), ("rail_distance", 0.0),
 ])  # fmt: skip
 def test_bad_curves_are_refused_naming_the_field(field: str, value: object) -> None:

@@ -15,6 +15,7 @@ plane rolls by a positive angle (a point above the track moves toward +y, the in
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -59,8 +60,9 @@ class Curve:
         Radius of the constant curve (m): finite and at least 50 m (straight track has no
         Curve; a very large radius approaches it).
     cant : float
-        Height of the outer rail over the inner one (m), 0 to 0.2 m, measured over the
-        rail-centre distance ``rail_distance``.
+        Height of the outer rail over the inner one (m), measured over the rail-centre
+        distance ``rail_distance``: 0 to 0.5 m (real track: up to 0.18-0.2 m; more only
+        in studies at a fixed cant deficiency).
     transition : float
         Length of each transition curve (m), 0 to 2000 m: curvature and cant rise
         linearly from the tangent to the constant curve (a clothoid with a linear cant
@@ -89,7 +91,7 @@ class Curve:
         setter = object.__setattr__
         setter(self, "radius", _check("radius", self.radius, 50.0, math.inf, "m",
                                       high_open=True))
-        setter(self, "cant", _check("cant", self.cant, 0.0, 0.2, "m"))
+        setter(self, "cant", _check("cant", self.cant, 0.0, 0.5, "m"))
         setter(self, "transition", _check("transition", self.transition, 0.0, 2000.0, "m"))
         if self.direction not in _DIRECTIONS:
             raise ValueError(
@@ -206,3 +208,56 @@ def _segments(s0: float, pieces: list[tuple[float, float, float, float, float]])
         th0 = th0 + u * (k0 + 0.5 * dk * u)
         s += length
     return rows
+
+
+#: Largest cant of real track (m); studies at a fixed cant deficiency may need more.
+MAX_REAL_CANT = 0.2
+
+
+def cant_for_deficiency(radius: float, cant_deficiency: float, speed: float, g: float = 9.81,
+                        rail_distance: float = RAIL_CENTRE_DISTANCE) -> float:  # fmt: skip
+    """The cant (m) that leaves ``cant_deficiency`` (m) at ``speed`` (m/s) in a curve.
+
+    Solves ``v^2/R cos(phi) - g sin(phi) = g h_d / s`` for the cant angle ``phi`` and
+    returns ``s sin(phi)``, at least 0 (a cant excess larger than the requested deficiency
+    would need a negative cant) and at most 0.5 m (the range of :class:`Curve`).
+    """
+    a = speed * speed / radius
+    target = g * cant_deficiency / rail_distance
+    r = math.hypot(a, g)
+    phi = math.acos(max(-1.0, min(1.0, target / r))) - math.atan2(g, a)
+    return min(max(rail_distance * math.sin(phi), 0.0), 0.5)
+
+
+def fixed_deficiency(radius: float, cant_deficiency: float, direction: str = "left",
+                     g: float = 9.81) -> Callable[[float], Curve]:  # fmt: skip
+    """Curves of one radius whose cant keeps a fixed cant deficiency at every speed.
+
+    Parameters
+    ----------
+    radius : float
+        Radius (m).
+    cant_deficiency : float
+        Cant deficiency to keep (m), e.g. 0.1.
+    direction : {"left", "right"}
+        Which way the curves turn.
+    g : float
+        Acceleration of gravity (m/s^2): pass the vehicle's.
+
+    Returns
+    -------
+    callable
+        ``curve(speed) -> Curve`` for a speed in m/s (for ``curve=`` of the critical-speed
+        analyses). Where the cant would leave [0, 0.5] m it is held at the limit and the
+        deficiency differs from the one asked for.
+    """
+    Curve(radius, direction=direction)  # validate
+    if not (math.isfinite(cant_deficiency) and -0.5 <= cant_deficiency <= 0.5):
+        raise ValueError(f"cant_deficiency = {cant_deficiency!r} m is invalid: must be finite "
+                         "and in [-0.5, 0.5] m")  # fmt: skip
+
+    def curve_at(speed: float) -> Curve:
+        return Curve(radius, cant_for_deficiency(radius, cant_deficiency, speed, g),
+                     direction=direction)  # fmt: skip
+
+    return curve_at

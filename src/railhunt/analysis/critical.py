@@ -289,7 +289,7 @@ def critical_speed(
     creep_law: str = "heuristic",
     progress: Callable[[Trial], None] | None = None,
     contact: object = None,
-    curve: Curve | None = None,
+    curve: Curve | Callable[[float], Curve] | None = None,
 ) -> CriticalSpeedResult:
     """Nonlinear critical speed by bisection (the paper's Sec. 4, excitation type (b)).
 
@@ -317,10 +317,12 @@ def critical_speed(
         Called with each :class:`Trial` as it finishes.
     contact : ContactGeometry, optional
         Tabulated contact geometry instead of the polynomials (see :class:`Model`).
-    curve : Curve, optional
+    curve : Curve or callable, optional
         Search in the constant part of this curve: each trial starts on the steady-curving
         equilibrium at its speed (:func:`railhunt.curving`), runs over the defect inside
         the curve and is judged by the leading wheelset's distance from that equilibrium.
+        A callable gives the curve at each trial speed in m/s (a fixed cant deficiency,
+        :func:`railhunt.curve.fixed_deficiency`).
 
     Returns
     -------
@@ -343,8 +345,9 @@ def critical_speed(
         if path is None:
             trial = run_trial(model, speed_kmh, excitation, judgement, method=method, dt=step)
         else:
+            speed = kmh_to_ms(speed_kmh)
             trial = run_trial(model, speed_kmh, excitation, judgement, method=method, dt=step,
-                              route=path.route, reference=path.state(kmh_to_ms(speed_kmh)))
+                              route=path.route_at(speed), reference=path.state(speed))
         trials.append(trial)
         if progress is not None:
             progress(trial)

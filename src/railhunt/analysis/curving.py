@@ -12,6 +12,7 @@ the equilibrium tell whether it is stable and how well the hunting mode is dampe
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -351,13 +352,35 @@ class EquilibriumPath:
     Each speed is solved from the equilibrium of the nearest speed solved before (the
     equilibrium moves smoothly with the cant deficiency), so scans and root searches over
     the speed cost a few Newton iterations per speed.
+
+    Parameters
+    ----------
+    model : Model
+        The vehicle model.
+    curve : Curve or callable
+        The curve, or ``curve(speed) -> Curve`` giving it at each speed (m/s), e.g. the
+        cant for a fixed cant deficiency (:func:`railhunt.curve.fixed_deficiency`).
     """
 
-    def __init__(self, model: Model, curve: Curve) -> None:
+    def __init__(self, model: Model, curve: Curve | Callable[[float], Curve]) -> None:
         self.model = model
         self.curve = curve
-        self.route = curve.steady_route()
         self._solved: dict[float, np.ndarray] = {}
+
+    def curve_at(self, speed: float) -> Curve:
+        """The curve at ``speed`` (m/s)."""
+        return self.curve if isinstance(self.curve, Curve) else self.curve(speed)
+
+    def route_at(self, speed: float) -> np.ndarray:
+        """The steady route of the curve at ``speed`` (m/s)."""
+        return self.curve_at(speed).steady_route()
+
+    @property
+    def route(self) -> np.ndarray:
+        """The steady route of a fixed curve (not one that changes with speed)."""
+        if not isinstance(self.curve, Curve):
+            raise TypeError("this path's curve changes with the speed: use route_at(speed)")
+        return self.curve.steady_route()
 
     def state(self, speed: float) -> np.ndarray:
         """The equilibrium state at ``speed`` (m/s)."""
@@ -366,12 +389,13 @@ class EquilibriumPath:
             if self._solved:
                 near = min(self._solved, key=lambda s: abs(s - speed))
                 guess = self._solved[near]
-            self._solved[speed], _ = solve_curving(self.model, speed, self.curve, guess)
+            self._solved[speed], _ = solve_curving(self.model, speed, self.curve_at(speed),
+                                                   guess)  # fmt: skip
         return self._solved[speed]
 
     def jacobian(self, speed: float) -> np.ndarray:
         """Jacobian of the motion about the equilibrium at ``speed`` (m/s)."""
-        return self.model.jacobian(speed, self.state(speed), route=self.route)
+        return self.model.jacobian(speed, self.state(speed), route=self.route_at(speed))
 
     def jacobian_kmh(self, speed_kmh: float) -> np.ndarray:
         """:meth:`jacobian` at a speed in km/h."""

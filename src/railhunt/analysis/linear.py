@@ -12,6 +12,7 @@ speed* is where the least-damped eigenvalue's real part crosses zero.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -141,7 +142,7 @@ def linear_critical_speed(
     scan_step_kmh: float = 20.0,
     creep_law: str = "heuristic",
     contact: object = None,
-    curve: Curve | None = None,
+    curve: Curve | Callable[[float], Curve] | None = None,
 ) -> LinearCriticalSpeed:
     """Lowest speed at which the centred (or steady-curving) equilibrium loses stability.
 
@@ -165,11 +166,12 @@ def linear_critical_speed(
         See :class:`railhunt.model.Model`.
     contact : ContactGeometry, optional
         Tabulated contact geometry instead of the polynomials (see ``Model``).
-    curve : Curve, optional
+    curve : Curve or callable, optional
         Stability about the steady-curving equilibrium in this curve's constant part
         (:func:`railhunt.curving`) instead of the centred state on straight track. The
         equilibrium moves with speed as the cant deficiency changes; it is followed from
-        each speed to the next.
+        each speed to the next. A callable gives the curve at each speed in m/s (a fixed
+        cant deficiency, :func:`railhunt.curve.fixed_deficiency`).
 
     Returns
     -------
