@@ -144,6 +144,7 @@ class Model:
             bodies=BODY_INDEX.copy(),
             body_delay=self.body_offsets(),
             suspension=np.ascontiguousarray(-inv_m[:, None] * np.hstack([k_susp, self.C])),
+            scratch=np.zeros(3 * len(self.mass)),
         )
 
     # The kernel's arrays under their short historical names.

@@ -248,8 +248,7 @@ def bump_stop_forces(model: Model, speed: float, route: np.ndarray, x: np.ndarra
                      t: float = 0.0) -> np.ndarray:  # fmt: skip
     """Force in each bump stop (N) at state ``x`` and time ``t`` on ``route``."""
     v, system = model.args(speed, route=route)
-    geo = np.zeros(2 * N_DOF)
-    curve_geometry(t, v, system, geo, np.zeros(N_DOF))
+    geo = curve_geometry(t, v, system)
     dist = system.stop_rows @ (x[:N_DOF] + geo[:N_DOF])
     par = system.stop
     return np.array([bump_stop_force(d, p[StopParam.GAP], p[StopParam.K1], p[StopParam.K3])

@@ -27,6 +27,13 @@ from typing import NamedTuple
 
 import numpy as np
 
+#: numba options for kernel functions that allocate nothing and run millions of times (the
+#: right-hand side, one integrator step, the state check): compiled without reference
+#: counting of arrays, which otherwise costs an atomic increment and decrement for every
+#: array taken out of the :class:`SystemArrays` bundle at every call (a third of the
+#: right-hand side's time). Such a function must not allocate or return an array.
+NO_REFCOUNT = {"_nrt": False}
+
 
 @dataclass(frozen=True)
 class Body:
@@ -322,6 +329,9 @@ class SystemArrays(NamedTuple):
     suspension : numpy.ndarray, shape (n_dof, 2 n_dof)
         ``-M^-1 [K, C]`` of the suspension alone (no gravitational terms): accelerations
         from the geometric offsets a curve imposes.
+    scratch : numpy.ndarray, shape (3 n_dof,)
+        Work space of the curve terms (overwritten at every call; the kernel is used by
+        one thread at a time per bundle).
     """
 
     linear: np.ndarray
@@ -340,3 +350,4 @@ class SystemArrays(NamedTuple):
     bodies: np.ndarray
     body_delay: np.ndarray
     suspension: np.ndarray
+    scratch: np.ndarray
