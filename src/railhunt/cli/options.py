@@ -414,14 +414,13 @@ def curve_json(curve: Curve | None) -> dict[str, Any] | None:
     if curve is None:
         return None
     return {"radius_m": curve.radius, "cant_mm": curve.cant * 1e3,
-            "transition_m": curve.transition, "direction": curve.direction,
-            "start_m": curve.start}  # fmt: skip
+            "transition_m": curve.transition, "direction": curve.direction}  # fmt: skip
 
 
-def describe_curve(curve: Curve) -> str:
-    """One line describing a curve: radius, direction, cant and transition."""
-    return (f"R = {curve.radius:g} m to the {curve.direction}, cant {curve.cant * 1e3:g} mm, "
-            f"transitions {curve.transition:g} m")
+def describe_curve(curve: Curve, transition: bool = True) -> str:
+    """A curve in words: radius, direction, cant (and the length of its transitions)."""
+    text = f"R = {curve.radius:g} m to the {curve.direction}, cant {curve.cant * 1e3:g} mm"
+    return text + (f", transitions {curve.transition:g} m" if transition else "")
 
 
 
