@@ -335,7 +335,7 @@ def default_transition(radius: float) -> float:
 
 def radius_option(flag: str, dest: str, required: bool, help: str) -> Decorator:
     """A curve radius option (m), finite and at least 50 m."""
-    return click.option(flag, dest, type=float, required=required, default=None, metavar="M",
+    return click.option(flag, dest, type=float, required=required, metavar="M",
                         callback=number_range("m", 50.0, math.inf, low_open=False,
                                               optional=not required),
                         help=help)  # fmt: skip
