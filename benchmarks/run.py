@@ -174,6 +174,60 @@ def sweep_rate(vehicle: railhunt.Vehicle, workers: int, repeat: int) -> tuple[fl
         return seconds, len(result.rows)
 
 
+def warm_up_curves() -> None:
+    """Load the compiled code, the curve analyses' included, in this process (a worker)."""
+    from railhunt.studies.sweep import warm_up
+
+    warm_up()
+    railhunt.curving(railhunt.Vehicle.paper2019(), 200.0, railhunt.Curve(2000.0, 0.1))
+
+
+def curve_rows(vehicle: railhunt.Vehicle, repeat: int) -> tuple[list[Row], str]:
+    """Curved track (issue 14): steady curving, both critical speeds in a curve (150 mm cant;
+    R = 3000 m, and 8000 m for the nonlinear one), and a stability map of 5 radii with both
+    critical speeds on a local Dask cluster of 2 workers (the workers' compiled code loaded,
+    cluster start-up not timed)."""
+    from railhunt.studies.execute import local_client
+    from railhunt.studies.sweep import warm_up
+
+    curve = railhunt.Curve(3000.0, cant=0.15)
+    rows = []
+    t_curv, state = median_time(lambda: railhunt.curving(vehicle, 300.0, curve), repeat)
+    rows.append(Row("steady curving (R 3000 m, 150 mm cant, 300 km/h)", t_curv, 0.020))
+    t_lin, lin = median_time(lambda: railhunt.linear_critical_speed(vehicle, curve=curve),
+                             repeat)  # fmt: skip
+    rows.append(Row("linear critical speed in a curve (R 3000 m)", t_lin, 0.100))
+    # Two curves: at 8000 m the nonlinear critical speed lies far below the Hopf point, as on
+    # straight track; at 3000 m it lies at the Hopf point, where trial runs decay slowly and
+    # the search simulates longer.
+    wide = railhunt.Curve(8000.0, cant=0.15)
+    t_nlw, nlw = median_time(lambda: railhunt.critical_speed(vehicle, curve=wide), repeat)
+    rows.append(Row("nonlinear critical speed in a curve (R 8000 m)", t_nlw, 0.5))
+    t_nl, nl = median_time(lambda: railhunt.critical_speed(vehicle, curve=curve), repeat)
+    rows.append(Row("nonlinear critical speed in a curve (R 3000 m, at the Hopf point)", t_nl,
+                    0.5))  # fmt: skip
+    radii = [1000.0, 2000.0, 4000.0, 8000.0, math.inf]
+    with local_client(2) as client:
+        client.run(warm_up)  # each worker loads the compiled code, the curves' included
+        client.run(railhunt.curving, vehicle, 200.0, railhunt.Curve(2000.0, 0.1))
+        t0 = time.perf_counter()
+        result = railhunt.stability_map(vehicle, radii, 0.15, client=client)
+        t_map = time.perf_counter() - t0
+    rows.append(Row("stability map, 5 radii, both critical speeds (2 Dask workers)", t_map,
+                    20.0))  # fmt: skip
+    found = ", ".join(
+        f"{'straight' if r['radius_m'] == math.inf else format(r['radius_m'], 'g')}: "
+        f"{r['critical_speed_kmh']:.0f}/{r['linear_critical_speed_kmh']:.1f}"
+        for r in result.rows)  # fmt: skip
+    summary = (f"curves: at 300 km/h in R 3000 m (150 mm cant) y_w1 "
+               f"{state.wheelset_y[0] * 1e3:.3f} mm, {'stable' if state.stable else 'unstable'}"
+               f"; critical speeds there {nl.speed_kmh:.0f} km/h (nonlinear, "
+               f"{len(nl.trials)} trials), {lin.speed_kmh:.1f} km/h (linear); in R 8000 m "
+               f"{nlw.speed_kmh:.0f} km/h ({len(nlw.trials)} trials); stability map "
+               f"(nonlinear/linear km/h) {found}")  # fmt: skip
+    return rows, summary
+
+
 def print_table(rows: list[Row]) -> None:
     headers = ("case", "time (median)", "target", "pass/fail")
     cells = [
@@ -251,6 +305,10 @@ def main(argv: list[str] | None = None) -> int:
 
     t_nl, nl = median_time(lambda: railhunt.critical_speed(vehicle), repeat)
     rows.append(Row("nonlinear critical speed search", t_nl, 0.3))
+
+    warm_up_curves()
+    curves, curve_summary = curve_rows(vehicle, repeat)
+    rows += curves
 
     # Periodic orbits and continuation (issue 4). The orbit case warms the compiled code;
     # the whole diagram is timed once (it takes seconds).
@@ -335,6 +393,7 @@ def main(argv: list[str] | None = None) -> int:
         f"(RK4: {t_base / t_rk4:.0f}x)"
     )
 
+    print(curve_summary)
     print(
         f"sweep throughput: 1 worker {rates[1][1] / rates[1][0]:.2f} points/s, 2 workers "
         f"{rates[2][1] / rates[2][0]:.2f} points/s: {speedup:.2f}x (target >= "

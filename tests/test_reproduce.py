@@ -172,6 +172,25 @@ def test_quick_headline_json(quick_run):
 # --------------------------------------------------------------------------- CLI errors
 
 
+def test_quick_report_goes_beyond_the_paper(quick_run):
+    """The last section: the stability map of the paper's vehicle in curves (railhunt's own
+    results, no headline rows); --quick leaves out the nonlinear search."""
+    out, result = quick_run
+    meta = json.loads((out / "headline.json").read_text(encoding="utf-8"))
+    step = meta["steps"][-1]
+    assert step["name"] == "curves" and step["status"] == "ok"
+    assert step["figures"] == ["stability_map.png"]
+    assert [r["radius (m)"] for r in step["table"]] == ["2000", "4000", "8000", "straight"]
+    assert all(r["cant (mm)"] == "150" for r in step["table"][:3])
+    assert step["table"][3]["linear critical speed (km/h)"] == "441.3"
+    assert "nonlinear critical speed (km/h)" not in step["table"][0]
+    assert (out / "stability_map.csv").exists()
+    text = (out / "report.html").read_text(encoding="utf-8")
+    assert 'id="curves"' in text and "not the paper" in text
+    assert '<table class="results">' in text
+    assert "Beyond the paper: hunting stability in curves: ok" in " ".join(result.stdout.split())
+
+
 def test_cli_rejects_scheduler_and_workers(tmp_path):
     result = run("reproduce", "--out", str(tmp_path), "--scheduler", "tcp://x:1", "--workers",
                  "2")  # fmt: skip

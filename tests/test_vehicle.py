@@ -50,16 +50,18 @@ def write(tmp_path, text: str, name: str = "vehicle.toml"):
 
 
 def test_parameter_set_matches_rule_categories():
-    assert len(PARAMETERS) == 53
+    # The paper's 53 and the secondary lateral bump stop's three (curved track, issue 14).
+    assert len(PARAMETERS) == 56
     assert list(PARAMETERS) == [f.name for f in dataclasses.fields(Vehicle)
                                 if f.name not in ("name", "description", "contact")]
     for name in ["M_c", "J_wz", "K_d", "C_d1", "C_d2", "F_u", "h4", "l", "l1", "W", "g"]:
         assert name in POSITIVE
-    for name in ["C_px", "C_py", "C_pz", "C_sy", "C_sz", "f23", "f33", "h1", "h2", "h3", "h5"]:
+    for name in ["C_px", "C_py", "C_pz", "C_sy", "C_sz", "f23", "f33", "h1", "h2", "h3", "h5",
+                 "y_bs", "K_bs", "K_bs3"]:
         assert name in NONNEGATIVE
     expected_finite = [f"lambda{i}" for i in range(1, 6)] + ["d0", "d1", "d4", "d5"]
     assert sorted(FINITE_ONLY) == sorted(expected_finite)
-    assert len(set(POSITIVE) | set(NONNEGATIVE) | set(FINITE_ONLY)) == 53
+    assert len(set(POSITIVE) | set(NONNEGATIVE) | set(FINITE_ONLY)) == 56
     assert PARAMETERS["C_d1"].unit == "N*s/m"
     assert PARAMETERS["mu"].unit == "1"
 
@@ -91,7 +93,7 @@ def test_immutable():
 
 
 def test_repr_short():
-    assert repr(PAPER) == "Vehicle('paper2019', 53 parameters)"
+    assert repr(PAPER) == "Vehicle('paper2019', 56 parameters)"
 
 
 def test_constructor_validates():
@@ -519,7 +521,7 @@ def test_file_structure_errors(tmp_path):
 
 def test_parameter_table():
     rows = PAPER.parameter_table()
-    assert len(rows) == 53
+    assert len(rows) == 56
     assert rows[0] == ("M_c", 28000.0, "kg", "Car body mass")
     names = [r[0] for r in PAPER.parameter_table(include_derived=True)]
     assert names[-2:] == ["v_u", "N"]
@@ -564,7 +566,10 @@ def test_parameter_table_is_the_vehicle_fields():
     names = [f.name for f in dataclasses.fields(VehicleFields)]
     assert names == [f.name for f in dataclasses.fields(Vehicle)]
     assert names[:3] == ["name", "description", "contact"] and names[3:] == list(PARAMETERS)
-    assert all(spec.default is None for spec in PARAMETERS.values())
+    # The paper's parameters are required; those added later (the bump stop) have defaults,
+    # so vehicle files written before them still load.
+    later = {"y_bs": 0.03, "K_bs": 1.0e6, "K_bs3": 5.0e9}
+    assert {n: s.default for n, s in PARAMETERS.items() if s.default is not None} == later
     with pytest.raises(TypeError, match="build a Vehicle"):
         VehicleFields(**PAPER.as_dict())
 

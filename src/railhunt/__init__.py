@@ -11,6 +11,8 @@ Main entry points (imported lazily, so ``import railhunt`` stays fast)::
     linear_critical_speed            Hopf point of the centred equilibrium
     critical_speed                   nonlinear critical speed by bisection (the paper's)
     critical_speed_ramp              nonlinear critical speed by a slow speed ramp (type a)
+    Curve, curving                   a curve of the track; steady curving and its stability
+    stability_map                    critical speeds against the curve radius
     bifurcation_diagram              limit-cycle branches by path following, Hopf type
     periodic_orbit                   one limit cycle by shooting, Floquet multipliers
     hunting_frequency                hunting frequency (eigenvalue or limit cycle)
@@ -55,6 +57,10 @@ _EXPORTS = {
     "eigen_analysis": "railhunt.analysis.linear",
     "critical_speed": "railhunt.analysis.critical",
     "critical_speed_ramp": "railhunt.analysis.ramp",
+    "Curve": "railhunt.curve",
+    "curving": "railhunt.analysis.curving",
+    "CurvingResult": "railhunt.analysis.curving",
+    "stability_map": "railhunt.studies.stability_map",
     "bifurcation_diagram": "railhunt.analysis.continuation",
     "periodic_orbit": "railhunt.analysis.periodic",
     "hunting_frequency": "railhunt.analysis.frequency",
@@ -91,6 +97,7 @@ __all__ = sorted(_EXPORTS)
 # are imported lazily by __getattr__ below).
 if TYPE_CHECKING:
     from railhunt.analysis.continuation import bifurcation_diagram as bifurcation_diagram
+    from railhunt.analysis.curving import CurvingResult as CurvingResult, curving as curving
     from railhunt.analysis.critical import critical_speed as critical_speed
     from railhunt.analysis.frequency import hunting_frequency as hunting_frequency
     from railhunt.analysis.linear import (
@@ -117,6 +124,7 @@ if TYPE_CHECKING:
         hertz_contact as hertz_contact,
         kalker_coefficients as kalker_coefficients,
     )
+    from railhunt.curve import Curve as Curve
     from railhunt.contact.profiles import (
         Profile as Profile,
         read_profile as read_profile,
@@ -137,6 +145,7 @@ if TYPE_CHECKING:
         section_changes as section_changes,
         table1_study as table1_study,
     )
+    from railhunt.studies.stability_map import stability_map as stability_map
     from railhunt.studies.store import SweepResults as SweepResults, read_results as read_results
     from railhunt.studies.sweep import sweep as sweep
     from railhunt.track import (

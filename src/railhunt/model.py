@@ -24,7 +24,10 @@ from railhunt import track as _track
 from railhunt.kernel.creep import CREEP_LAWS
 from railhunt.kernel.damper import damper_velocity_array
 from railhunt.kernel.layout import (
+    BODY_INDEX,
+    LAYOUT,
     N_DAMPER,
+    N_ROUTE,
     N_STATE,
     N_WR,
     STATE_NAMES,
@@ -33,11 +36,13 @@ from railhunt.kernel.layout import (
     WR,
     Y_W1,
     DamperParam,
+    StopParam,
     SystemArrays,
 )
 from railhunt.kernel.rhs import jacobian, rhs, wheelset_forces
 from railhunt.suspension import (
     assemble,
+    bump_stop_rows,
     gravity_stiffness,
     mass_matrix_diagonal,
     suspension_elements,
@@ -116,6 +121,11 @@ class Model:
         dpar[:, DamperParam.C_D1] = vehicle.C_d1
         dpar[:, DamperParam.C_D2] = vehicle.C_d2
         dpar[:, DamperParam.F_U] = vehicle.F_u
+        rows = bump_stop_rows(vehicle)
+        stop = np.zeros((rows.shape[0], len(StopParam)))
+        stop[:, StopParam.GAP] = vehicle.y_bs
+        stop[:, StopParam.K1] = vehicle.K_bs
+        stop[:, StopParam.K3] = vehicle.K_bs3
         trk, trs = _track.encode(None)
         self._system = SystemArrays(
             linear=np.ascontiguousarray(-inv_m[:, None] * np.hstack([self.K, self.C])),
@@ -127,6 +137,14 @@ class Model:
             wheelset_delay=self.wheelset_offsets(),
             track=trk,
             track_samples=trs,
+            stop_rows=np.ascontiguousarray(rows),
+            stop_acc=np.ascontiguousarray(-inv_m[:, None] * rows.T),
+            stop=stop,
+            route=np.zeros((0, N_ROUTE)),
+            bodies=BODY_INDEX.copy(),
+            body_delay=self.body_offsets(),
+            suspension=np.ascontiguousarray(-inv_m[:, None] * np.hstack([k_susp, self.C])),
+            scratch=np.zeros(3 * len(self.mass)),
         )
 
     # The kernel's arrays under their short historical names.
@@ -147,6 +165,7 @@ class Model:
         wr[WR.DELTA_MAX] = v.delta_max
         wr[WR.CREEP_LAW] = CREEP_LAWS[self.creep_law]
         wr[WR.INV_MW], wr[WR.INV_JW] = 1.0 / v.M_w, 1.0 / v.J_wz
+        wr[WR.W], wr[WR.G], wr[WR.MH] = v.W, v.g, self.mass_height()
         if self.contact is not None:
             wr = np.concatenate([wr[:WR.TABLE], _contact_table(self.contact)])
         return wr
@@ -156,21 +175,52 @@ class Model:
         v = self.vehicle
         return np.array([0.0, 2 * v.l1, 2 * v.l, 2 * v.l + 2 * v.l1])
 
-    def system(self, excitation: object = None) -> SystemArrays:
-        """The kernel's bundle of arrays, with the track input of ``excitation``.
+    def body_offsets(self) -> np.ndarray:
+        """Distance of each body's centre behind the leading wheelset (m), in layout order:
+        car body ``l + l1``, bogies ``l1`` and ``2 l + l1``, then the wheelsets."""
+        v = self.vehicle
+        where = {"car": v.l + v.l1, "bogie1": v.l1, "bogie2": 2 * v.l + v.l1}
+        ws = dict(zip(LAYOUT.wheelsets, self.wheelset_offsets(), strict=True))
+        return np.array([where.get(b, ws.get(b)) for b in LAYOUT.body_names], dtype=float)
+
+    def mass_height(self) -> float:
+        """Sum of mass times height above the rail carried by one wheelset (kg*m).
+
+        A quarter of the car body at ``r0 + h4 + h3 + h1``, half a bogie frame at
+        ``r0 + h4`` and the wheelset at ``r0``: the heights follow from the paper's
+        vertical distances (1.59 m and 0.58 m for its vehicle). Sets the load transfer
+        between the wheels in a curve.
+        """
+        v = self.vehicle
+        h_bogie = v.r0 + v.h4
+        h_car = h_bogie + v.h3 + v.h1
+        return v.M_c / 4 * h_car + v.M_t / 2 * h_bogie + v.M_w * v.r0
+
+    def system(self, excitation: object = None, route: np.ndarray | None = None) -> SystemArrays:
+        """The kernel's bundle of arrays, with a track input and a route.
 
         Parameters
         ----------
         excitation : object, optional
             Track input (:class:`railhunt.track.SingleDefect`, ``SampledTrack``); ideal
             track otherwise.
+        route : numpy.ndarray, optional
+            Track geometry (:meth:`railhunt.curve.Curve.route` or ``steady_route``);
+            straight track otherwise.
         """
-        if excitation is None:
-            return self._system
-        trk, trs = _track.encode(excitation)
-        return self._system._replace(track=trk, track_samples=trs)
+        system = self._system
+        if excitation is not None:
+            trk, trs = _track.encode(excitation)
+            system = system._replace(track=trk, track_samples=trs)
+        if route is not None:
+            route = np.ascontiguousarray(route, dtype=np.float64)
+            if route.ndim != 2 or route.shape[1] != N_ROUTE:
+                raise ValueError(f"route has shape {route.shape}: must be (n, {N_ROUTE})")
+            system = system._replace(route=route)
+        return system
 
-    def args(self, speed: float, excitation: object = None) -> tuple[float, SystemArrays]:
+    def args(self, speed: float, excitation: object = None,
+             route: np.ndarray | None = None) -> tuple[float, SystemArrays]:  # fmt: skip
         """Arguments that follow ``(t, x)`` in every call of the kernel's ``rhs``.
 
         Parameters
@@ -179,6 +229,8 @@ class Model:
             Forward speed (m/s), > 0.
         excitation : object, optional
             Track input; ideal track otherwise.
+        route : numpy.ndarray, optional
+            Track geometry; straight track otherwise.
 
         Returns
         -------
@@ -187,20 +239,24 @@ class Model:
         """
         if not (math.isfinite(speed) and speed > 0.0):
             raise ValueError(f"speed = {speed!r} m/s is invalid: must be finite and > 0")
-        return float(speed), self.system(excitation)
+        return float(speed), self.system(excitation, route)
 
     def derivative(
-        self, x: np.ndarray, speed: float, t: float = 0.0, excitation: object = None
-    ) -> np.ndarray:
+        self, x: np.ndarray, speed: float, t: float = 0.0, excitation: object = None,
+        route: np.ndarray | None = None,
+    ) -> np.ndarray:  # fmt: skip
         """dx/dt at state ``x`` (convenience wrapper of the kernel's ``rhs``)."""
         out = np.empty(N_STATE)
-        rhs(t, np.ascontiguousarray(x, dtype=np.float64), *self.args(speed, excitation), out)
+        rhs(t, np.ascontiguousarray(x, dtype=np.float64), *self.args(speed, excitation, route),
+            out)  # fmt: skip
         return out
 
-    def jacobian(self, speed: float, x: np.ndarray | None = None) -> np.ndarray:
-        """Jacobian of the autonomous system (ideal track) at ``x`` (default: centred)."""
+    def jacobian(self, speed: float, x: np.ndarray | None = None,
+                 route: np.ndarray | None = None, t: float = 0.0) -> np.ndarray:  # fmt: skip
+        """Jacobian of the system without track input at ``x`` (default: centred), at
+        time ``t`` on ``route`` (default: straight track)."""
         x0 = np.zeros(N_STATE) if x is None else np.ascontiguousarray(x, dtype=np.float64)
-        return jacobian(x0, *self.args(speed))
+        return jacobian(x0, *self.args(speed, route=route), t)
 
     def damper_velocities(self, damper_forces: np.ndarray) -> np.ndarray:
         """Velocities of the viscous parts of the yaw dampers (m/s) for given forces (N).

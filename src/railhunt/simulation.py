@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from railhunt.channels import CHANNEL_UNITS, derived_channels
+from railhunt.curve import Curve
 from railhunt.kernel import integrators
 from railhunt.kernel.layout import (
     DAMPER_NAMES,
@@ -169,15 +170,18 @@ def integrate_model(
     rtol: float = 1e-6,
     atol: np.ndarray | None = None,
     y_limit: float = Y_LIMIT,
+    route: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray, int, dict]:
     """Integrate the model (low-level; :func:`simulate` is the friendly entry point).
 
-    Returns times, states, the integrator's status code and a dict of statistics.
+    ``route`` is the track geometry (:meth:`railhunt.curve.Curve.route`); straight track
+    by default. Returns times, states, the integrator's status code and a dict of
+    statistics.
     """
     if method not in integrators.METHODS:
         raise ValueError(f"method = {method!r} is invalid: must be one of {METHODS}")
     return integrators.METHODS[method](
-        x0, t0, duration, *model.args(speed, excitation), dt=dt, output_dt=output_dt,
+        x0, t0, duration, *model.args(speed, excitation, route), dt=dt, output_dt=output_dt,
         rtol=rtol, atol=atol, y_limit=y_limit,
     )  # fmt: skip
 
@@ -205,8 +209,9 @@ def simulate(
     creep_law: str = "heuristic",
     y_limit: float = Y_LIMIT,
     model: Model | None = None,
+    curve: Curve | None = None,
 ) -> SimulationResult:
-    """Simulate the vehicle at constant speed on straight track.
+    """Simulate the vehicle at constant speed on straight track or through a curve.
 
     Parameters
     ----------
@@ -241,6 +246,13 @@ def simulate(
         derailed (m).
     model : Model, optional
         A model already built for ``vehicle`` (saves assembling it again).
+    curve : Curve, optional
+        Run through this curve (:class:`railhunt.Curve`): straight track up to
+        ``curve.start``, the entry transition, the constant curve, the exit transition
+        (if it has a length) and straight track again. Coordinates are measured from the
+        track at each body's position; the channels include the yaw damper forces
+        (``F_d1``..) and velocities (``v_d1``..), the guiding forces ``Y``, wheel loads
+        ``Q`` and ``Y/Q`` of every wheel and ``ΣY`` of every wheelset.
 
     Returns
     -------
@@ -260,14 +272,15 @@ def simulate(
     x_init = _initial_state(model, excitation, x0)
     if dt is None:
         dt = auto_step(model, speed)
+    route = None if curve is None else curve.route()
     t, x, code, stats = integrate_model(
         model, speed, duration, x_init, excitation=excitation, method=method, dt=dt,
-        output_dt=output_dt, rtol=rtol, y_limit=y_limit,
+        output_dt=output_dt, rtol=rtol, y_limit=y_limit, route=route,
     )  # fmt: skip
     vd = model.damper_velocities(x[:, FORCES])
     return SimulationResult(
         t=t, x=x, speed=speed, status=integrators.STATUS_NAMES[code],
         message=integrators.status_message(code, t[-1], y_limit), damper_velocity=vd,
         excitation_end=excitation_end_time(model, excitation, speed), stats=stats,
-        derived=derived_channels(t, x, *model.args(speed, excitation)),
+        derived=derived_channels(t, x, *model.args(speed, excitation, route)),
     )  # fmt: skip

@@ -36,6 +36,7 @@ from railhunt.vehicle import Vehicle
 
 __all__ = [
     "BODY_DOFS", "DAMPER_NAMES", "DOF_NAMES", "N_DAMPER", "N_DOF", "Element", "assemble",
+    "bump_stop_rows",
     "damper_force_steady", "damper_velocity", "gravity_stiffness", "mass_matrix_diagonal",
     "point_row", "suspension_elements", "yaw_damper_rows",
 ]  # fmt: skip
@@ -226,4 +227,20 @@ def yaw_damper_rows(vehicle: Vehicle) -> np.ndarray:
                 point_row(f"bogie{i + 1}", (0.0, s * vehicle.b4, 0.0), "x")
                 - point_row("car", (xc, s * vehicle.b4, 0.0), "x")
             )
+    return np.array(rows)
+
+
+def bump_stop_rows(vehicle: Vehicle) -> np.ndarray:
+    """Deformation rows of the secondary lateral bump stops, one per bogie (m).
+
+    Each stop acts laterally between the car body (at x = +-l) and its bogie frame at the
+    level of the secondary suspension (car ``-h1``, bogie ``+h3`` from the centres of
+    gravity): deformation = bogie point minus car point, ``B_s @ q``. Its law (free play
+    ``y_bs``, then ``K_bs u + K_bs3 u^3``) is :mod:`railhunt.kernel.bumpstop`.
+    """
+    rows = []
+    for i in range(2):
+        xc = vehicle.l if i == 0 else -vehicle.l
+        rows.append(point_row(f"bogie{i + 1}", (0.0, 0.0, vehicle.h3), "y")
+                    - point_row("car", (xc, 0.0, -vehicle.h1), "y"))  # fmt: skip
     return np.array(rows)

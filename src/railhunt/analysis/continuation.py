@@ -37,15 +37,17 @@ from railhunt.analysis.branches import (
     make_branch,
     on_branch,
 )
+from railhunt.analysis.curving import EquilibriumPath
 from railhunt.analysis.linear import eigenvalues, hunting_mode_index, linear_critical_speed
+from railhunt.analysis.modes import sorted_eig
 from railhunt.analysis.periodic import (
-    MIN_STATE,
     PHASE_INDEX,
     STATE_SCALE,
     PeriodicOrbit,
     Shooting,
     newton,
 )
+from railhunt.curve import Curve
 from railhunt.kernel.integrators import OK
 from railhunt.kernel.layout import N_STATE, WHEELSET_Y, Y_W1
 from railhunt.model import Model
@@ -71,9 +73,16 @@ def _check_range(speed_range_kmh: tuple[float, float]) -> tuple[float, float]:
     return lo, hi
 
 
-def _hopf_start(model: Model, hopf_kmh: float) -> tuple[np.ndarray, float]:
-    """Hunting eigenvector normalised to y_w1 = 1 (real state shape) and the period (s)."""
-    w, vecs = eigenvalues(model, kmh_to_ms(hopf_kmh))
+def _hopf_start(model: Model, hopf_kmh: float,
+                path: EquilibriumPath | None = None) -> tuple[np.ndarray, float]:  # fmt: skip
+    """Hunting eigenvector normalised to y_w1 = 1 (real state shape) and the period (s).
+
+    About the centred state, or about the curving equilibrium of ``path``.
+    """
+    if path is None:
+        w, vecs = eigenvalues(model, kmh_to_ms(hopf_kmh))
+    else:
+        w, vecs = sorted_eig(path.jacobian_kmh(hopf_kmh))
     k = hunting_mode_index(w, vecs, model.vehicle.a)
     lam = w[k]
     if lam.imag < 0:
@@ -92,6 +101,7 @@ class _Limits:
     max_points: int
     max_step_kmh: float
     max_step_amplitude: float
+    min_amplitude: float = 0.0  # m: a branch whose amplitude falls below this has ended
 
 
 class _Tracer:
@@ -157,7 +167,7 @@ class _Tracer:
                 # to another branch) or fell onto the equilibrium, which solves the shooting
                 # equations for any period.
                 if ok and (np.linalg.norm(u_new - u_pred) > ds
-                           or np.max(np.abs(u_new[:-2])) < MIN_STATE):  # fmt: skip
+                           or shoot.near_equilibrium(u_new)):  # fmt: skip
                     ok = False
                 if ok:
                     break
@@ -176,6 +186,9 @@ class _Tracer:
                 return orbits, "left the speed range upward", True, False
             if orbit.amplitude > lim.max_amplitude:
                 return orbits, f"amplitude above {lim.max_amplitude * 1e3:g} mm", True, False
+            if orbit.amplitude < lim.min_amplitude:
+                return orbits, (f"came back to the equilibrium near {v_kmh:.1f} km/h (a second "
+                                "Hopf point)"), True, False  # fmt: skip
         return orbits, f"used all its {budget} points (incomplete)", False, False
 
 
@@ -191,6 +204,7 @@ def bifurcation_diagram(
     symmetric: bool = True,
     creep_law: str = "heuristic",
     on_point: Callable[[PeriodicOrbit], None] | None = None,
+    curve: Curve | None = None,
 ) -> BifurcationDiagram:
     """Bifurcation diagram of the vehicle: branches of limit cycles versus speed.
 
@@ -224,6 +238,11 @@ def bifurcation_diagram(
         See :class:`railhunt.model.Model`.
     on_point : callable, optional
         Called with each new orbit (progress reporting).
+    curve : Curve, optional
+        Limit cycles about the steady-curving equilibrium in this curve's constant part.
+        A curve has no mirror symmetry: the orbits are shot over the whole period
+        (``symmetric`` is ignored), the Hopf point is that of the curving equilibrium and
+        amplitudes are half the peak-to-peak swing of ``y_w1``.
 
     Returns
     -------
@@ -242,22 +261,29 @@ def bifurcation_diagram(
             raise ValueError(f"seed_amplitudes contains {a!r} m: each must be in (0, 0.025) m")
     limits = _Limits(lo, hi, max_amplitude, int(max_points), max_step_kmh, max_step_amplitude)
     model = Model(vehicle, creep_law=creep_law)
-    linear = linear_critical_speed(vehicle, max_kmh=2000.0, tol_kmh=1e-3, creep_law=creep_law)
+    linear = linear_critical_speed(vehicle, max_kmh=2000.0, tol_kmh=1e-3, creep_law=creep_law,
+                                   curve=curve)  # fmt: skip
     hopf = linear.speed_kmh
     if not math.isfinite(hopf):
-        raise ValueError("the centred equilibrium stays stable up to 2000 km/h: no Hopf point")
-    shape, period0 = _hopf_start(model, hopf)
-    shoot = Shooting(model, symmetric=symmetric, dt=dt, dt_speed=kmh_to_ms(max(hi, hopf)))
+        where = "centred" if curve is None else "steady-curving"
+        raise ValueError(f"the {where} equilibrium stays stable up to 2000 km/h: no Hopf point")
+    path = None if curve is None else EquilibriumPath(model, curve)
+    shape, period0 = _hopf_start(model, hopf, path)
+    shoot = Shooting(model, symmetric=symmetric and curve is None, dt=dt,
+                     dt_speed=kmh_to_ms(max(hi, hopf)),
+                     route=None if path is None else path.route,
+                     equilibrium=None if path is None else path.state)  # fmt: skip
     shoot.set_period_hint(period0)
+    x_hopf = np.zeros(N_STATE) if path is None else path.state(kmh_to_ms(hopf))
     tracer = _Tracer(shoot, limits, on_point)
     iy = tracer.iy
 
     # 1. Three small orbits with y_w1(0) fixed (natural parameter), from the eigenvector.
     seeds = (5e-5, 1e-4, 2e-4)
     small: list[tuple[np.ndarray, PeriodicOrbit, tuple]] = []
-    u = shoot.pack(seeds[0] * shape, period0, kmh_to_ms(hopf))
+    u = shoot.pack(x_hopf + seeds[0] * shape, period0, kmh_to_ms(hopf))
     for n, eps in enumerate(seeds):
-        target = eps / STATE_SCALE[Y_W1]
+        target = (x_hopf[Y_W1] + eps) / STATE_SCALE[Y_W1]
         if n >= 2:
             u = small[-1][0] + (small[-1][0] - small[-2][0]) * (eps - seeds[n - 1]) / (
                 seeds[n - 1] - seeds[n - 2])  # fmt: skip
@@ -286,7 +312,10 @@ def bifurcation_diagram(
     # so that its type is known even when the Hopf point lies outside the range.
     tangent = small[-1][0] - small[-2][0]
     ds = float(np.linalg.norm(tangent))
-    hopf_limits = dataclasses.replace(limits, lo=min(lo, hopf - 10.0), hi=max(hi, hopf + 10.0))
+    # A branch that comes back below the smallest seeded amplitude has reached another Hopf
+    # point (in a curve the equilibrium can lose and regain stability along the speed).
+    hopf_limits = dataclasses.replace(limits, lo=min(lo, hopf - 10.0), hi=max(hi, hopf + 10.0),
+                                      min_amplitude=0.75 * seeds[-1])  # fmt: skip
     more, msg, complete, below = tracer.trace(small[-1][0], small[-1][2], tangent / ds, ds,
                                               limits.max_points, hopf_limits)  # fmt: skip
     branches = [make_branch([o for _, o, _ in small] + more, "hopf", (hopf, period0))]
@@ -298,7 +327,7 @@ def bifurcation_diagram(
     seed_speeds = [hi] + ([min(hopf + 10.0, 2.0 * hi)] if hopf + 10.0 > hi else [])
     for amp in seed_amplitudes:
         for seed_kmh in seed_speeds:
-            found = _seed_orbit(model, shoot, seed_kmh, amp)
+            found = _seed_orbit(model, shoot, seed_kmh, amp, path)
             if found is None:
                 continue
             u_c, orbit_c, lin_c = found
@@ -336,21 +365,28 @@ def bifurcation_diagram(
                               fold_below_range=below)  # fmt: skip
 
 
-def _seed_orbit(model: Model, shoot: Shooting, speed_kmh: float, amplitude: float):
-    """Simulate from a displaced state, shoot from where it settles; None if it decays."""
+def _seed_orbit(model: Model, shoot: Shooting, speed_kmh: float, amplitude: float,
+                path: EquilibriumPath | None = None):  # fmt: skip
+    """Simulate from a displaced state, shoot from where it settles; None if it decays.
+
+    In a curve (``path``) the run starts from the curving equilibrium with the wheelsets
+    displaced, and decay is judged toward that equilibrium.
+    """
     from railhunt.analysis.periodic import phase_origin
     from railhunt.simulation import auto_step, integrate_model
 
     speed = kmh_to_ms(speed_kmh)
-    x0 = np.zeros(N_STATE)
-    x0[WHEELSET_Y] = amplitude
+    x_eq = np.zeros(N_STATE) if path is None else path.state(speed)
+    x0 = x_eq.copy()
+    x0[WHEELSET_Y] += amplitude
     dt = auto_step(model, speed)
-    t, x, status, _ = integrate_model(model, speed, 12.0, x0, dt=dt)
+    route = None if path is None else path.route
+    t, x, status, _ = integrate_model(model, speed, 12.0, x0, dt=dt, route=route)
     if status != OK:
         return None
     y = x[:, Y_W1]
     tail = y[t > t[-1] - 2.0]
-    if np.max(np.abs(tail)) < 1e-4:
+    if np.max(np.abs(tail - x_eq[Y_W1])) < 1e-4:
         return None
     k = phase_origin(t, y)
     # Period guess from the spacing of the last maxima.

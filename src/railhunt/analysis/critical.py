@@ -17,7 +17,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from railhunt.analysis.curving import EquilibriumPath
 from railhunt.analysis.search import bracket_and_bisect, check_search
+from railhunt.curve import Curve
 from railhunt.kernel.integrators import OK, STATUS_NAMES
 from railhunt.kernel.layout import N_STATE, Y_W1
 from railhunt.model import Model
@@ -87,12 +89,17 @@ class CriticalSpeedResult:
         Every speed tried, in order, with its verdict.
     bracketed : bool
         True when a stable and a hunting speed were found within ``tol_kmh``.
+    excitation : object
+        The defect run over at each trial.
+    curve : Curve or None
+        The curve the search ran in (None: straight track).
     """
 
     speed_kmh: float
     trials: list[Trial] = field(default_factory=list)
     bracketed: bool = True
     excitation: object = None
+    curve: Curve | None = None
 
     @property
     def first_hunting_kmh(self) -> float:
@@ -110,10 +117,32 @@ def envelope_peaks(t: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray
     return t[idx], a[idx]
 
 
+def swing_peaks(t: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Times of the extrema of ``y`` and the half swing into each (half peak-to-peak).
+
+    The envelope of an oscillation that is not symmetric about zero (about a curving
+    equilibrium the excursions toward the flange and away from it differ): at each local
+    extremum, half its distance from the extremum before it.
+    """
+    if y.size < 3:
+        return t[:0], y[:0]
+    d = np.diff(y)
+    idx = np.nonzero(((d[:-1] > 0) & (d[1:] <= 0)) | ((d[:-1] < 0) & (d[1:] >= 0)))[0] + 1
+    if idx.size < 2:
+        return t[:0], y[:0]
+    return t[idx[1:]], 0.5 * np.abs(np.diff(y[idx]))
+
+
 def judge(
-    t: np.ndarray, y: np.ndarray, t_start: float, judgement: Judgement, final: bool = False
-) -> tuple[str | None, float, float]:
+    t: np.ndarray, y: np.ndarray, t_start: float, judgement: Judgement, final: bool = False,
+    two_sided: bool = False,
+) -> tuple[str | None, float, float]:  # fmt: skip
     """Verdict on a displacement history after ``t_start``.
+
+    ``y`` is the distance from the equilibrium the motion should decay to. With
+    ``two_sided`` the envelope is the half peak-to-peak swing (:func:`swing_peaks`), for
+    oscillations that are not symmetric about that equilibrium (in a curve); otherwise the
+    peaks of ``|y|`` (:func:`envelope_peaks`).
 
     Returns
     -------
@@ -128,7 +157,7 @@ def judge(
     tt, yy = t[mask], y[mask]
     if tt.size < 3:
         return None, math.nan, math.nan
-    pt, pa = envelope_peaks(tt, yy)
+    pt, pa = swing_peaks(tt, yy) if two_sided else envelope_peaks(tt, yy)
     recent = tt >= tt[-1] - min(1.0, judgement.settle_window)
     amplitude = float(np.max(np.abs(yy[recent])))
     if amplitude < judgement.decay_amplitude:
@@ -154,6 +183,8 @@ def run_until_verdict(
     method: str = "rk4",
     dt: float = 1e-3,
     output_dt: float = 2e-3,
+    route: np.ndarray | None = None,
+    reference: np.ndarray | None = None,
 ) -> tuple[str, np.ndarray, np.ndarray, int, float, float, bool]:
     """Simulate one speed, chunk by chunk, until the verdict on ``y_w1`` is clear.
 
@@ -173,6 +204,12 @@ def run_until_verdict(
         Integrator.
     dt, output_dt : float
         RK4 step and output interval (s).
+    route : numpy.ndarray, optional
+        Track geometry (a curve's steady route); straight track by default.
+    reference : numpy.ndarray, optional
+        The equilibrium the motion decays to (the steady-curving state in a curve):
+        ``y_w1`` is judged as its distance from ``reference``, and the run starts there
+        unless ``x0`` is given. Default: the centred state.
 
     Returns
     -------
@@ -189,22 +226,27 @@ def run_until_verdict(
     """
     speed = kmh_to_ms(speed_kmh)
     t_exc = excitation_end_time(model, excitation, speed)
-    t0, x_start = 0.0, np.zeros(N_STATE) if x0 is None else np.asarray(x0, dtype=float)
+    y_ref = 0.0 if reference is None else float(reference[Y_W1])
+    if x0 is None:
+        x0 = np.zeros(N_STATE) if reference is None else reference
+    t0, x_start = 0.0, np.asarray(x0, dtype=float)
     duration = t_exc + judgement.chunk
     ts: list[np.ndarray] = []
     xs: list[np.ndarray] = []
     while True:
         t, x, code, _ = integrate_model(
             model, speed, duration, x_start, t0=t0, excitation=excitation, method=method,
-            dt=dt, output_dt=output_dt, y_limit=Y_LIMIT,
+            dt=dt, output_dt=output_dt, y_limit=Y_LIMIT, route=route,
         )  # fmt: skip
         ts.append(t if not ts else t[1:])
         xs.append(x if not xs else x[1:])
         tt, xx = np.concatenate(ts), np.concatenate(xs)
+        y = xx[:, Y_W1] if reference is None else xx[:, Y_W1] - y_ref
         if code != OK:
-            return HUNTING, tt, xx, code, float(np.max(np.abs(xx[-50:, Y_W1]))), math.nan, True
+            return HUNTING, tt, xx, code, float(np.max(np.abs(y[-50:]))), math.nan, True
         final = tt[-1] - t_exc >= judgement.max_duration - 1e-9
-        verdict, amp, rate = judge(tt, xx[:, Y_W1], t_exc, judgement, final=final)
+        verdict, amp, rate = judge(tt, y, t_exc, judgement, final=final,
+                                   two_sided=reference is not None)  # fmt: skip
         if verdict is not None:
             return verdict, tt, xx, code, amp, rate, not final
         t0, x_start, duration = float(t[-1]), x[-1].copy(), judgement.chunk
@@ -218,11 +260,18 @@ def run_trial(
     method: str = "rk4",
     dt: float = 1e-3,
     output_dt: float = 2e-3,
+    route: np.ndarray | None = None,
+    reference: np.ndarray | None = None,
 ) -> Trial:
-    """Simulate one speed over ``excitation`` until the verdict is clear (one bisection step)."""
+    """Simulate one speed over ``excitation`` until the verdict is clear (one bisection step).
+
+    ``route`` and ``reference``: a curve's steady route and its equilibrium (see
+    :func:`run_until_verdict`).
+    """
     verdict, t, _, code, amp, rate, decided = run_until_verdict(
-        model, speed_kmh, judgement, excitation, method=method, dt=dt, output_dt=output_dt
-    )
+        model, speed_kmh, judgement, excitation, method=method, dt=dt, output_dt=output_dt,
+        route=route, reference=reference,
+    )  # fmt: skip
     return Trial(speed_kmh, verdict, amp, rate, float(t[-1]), decided, STATUS_NAMES[code])
 
 
@@ -240,6 +289,7 @@ def critical_speed(
     creep_law: str = "heuristic",
     progress: Callable[[Trial], None] | None = None,
     contact: object = None,
+    curve: Curve | Callable[[float], Curve] | None = None,
 ) -> CriticalSpeedResult:
     """Nonlinear critical speed by bisection (the paper's Sec. 4, excitation type (b)).
 
@@ -267,6 +317,12 @@ def critical_speed(
         Called with each :class:`Trial` as it finishes.
     contact : ContactGeometry, optional
         Tabulated contact geometry instead of the polynomials (see :class:`Model`).
+    curve : Curve or callable, optional
+        Search in the constant part of this curve: each trial starts on the steady-curving
+        equilibrium at its speed (:func:`railhunt.curving`), runs over the defect inside
+        the curve and is judged by the leading wheelset's distance from that equilibrium.
+        A callable gives the curve at each trial speed in m/s (a fixed cant deficiency,
+        :func:`railhunt.curve.fixed_deficiency`).
 
     Returns
     -------
@@ -282,9 +338,16 @@ def critical_speed(
     if dt is not None and not (math.isfinite(dt) and 0 < dt <= 0.01):
         raise ValueError(f"dt = {dt!r} s is invalid: must be finite and in (0, 0.01] s")
 
+    path = None if curve is None else EquilibriumPath(model, curve)
+
     def verdict(speed_kmh: float) -> str:
         step = dt if dt is not None else auto_step(model, kmh_to_ms(speed_kmh))
-        trial = run_trial(model, speed_kmh, excitation, judgement, method=method, dt=step)
+        if path is None:
+            trial = run_trial(model, speed_kmh, excitation, judgement, method=method, dt=step)
+        else:
+            speed = kmh_to_ms(speed_kmh)
+            trial = run_trial(model, speed_kmh, excitation, judgement, method=method, dt=step,
+                              route=path.route_at(speed), reference=path.state(speed))
         trials.append(trial)
         if progress is not None:
             progress(trial)
@@ -293,5 +356,6 @@ def critical_speed(
     lo, _, bracketed = bracket_and_bisect(lambda kmh: verdict(kmh) == HUNTING, start_kmh,
                                           step_kmh, tol_kmh, min_kmh, max_kmh)  # fmt: skip
     if not bracketed:
-        return CriticalSpeedResult(math.nan, trials, bracketed=False, excitation=excitation)
-    return CriticalSpeedResult(lo, trials, bracketed=True, excitation=excitation)
+        return CriticalSpeedResult(math.nan, trials, bracketed=False, excitation=excitation,
+                                   curve=curve)  # fmt: skip
+    return CriticalSpeedResult(lo, trials, bracketed=True, excitation=excitation, curve=curve)

@@ -1,5 +1,7 @@
 """Linear stability of the centred equilibrium: eigenvalues, hunting mode, Hopf speed.
 
+(In a curve: of the steady-curving equilibrium, :mod:`railhunt.analysis.curving`.)
+
 The Jacobian of the one compiled right-hand side (:func:`railhunt.model.jacobian`, central
 differences) at the centred state on ideal track is the linearised system. Its eigenvalues
 versus speed give the root locus; the *hunting mode* is the least-damped oscillatory mode
@@ -10,12 +12,16 @@ speed* is where the least-damped eigenvalue's real part crosses zero.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
-from railhunt.kernel.layout import BODY_Y, N_DOF, N_STATE, WHEELSET_PSI, WHEELSET_Y
+from railhunt.analysis.curving import EquilibriumPath
+from railhunt.analysis.modes import eigenvalues, hunting_mode_index, mac, sorted_eig
+from railhunt.curve import Curve
+from railhunt.kernel.layout import N_DOF, N_STATE
 from railhunt.model import Model
 from railhunt.units import kmh_to_ms
 from railhunt.vehicle import Vehicle
@@ -73,44 +79,6 @@ class LinearCriticalSpeed:
     is_hunting_mode: bool
 
 
-def eigenvalues(model: Model, speed: float) -> tuple[np.ndarray, np.ndarray]:
-    """Eigenvalues and eigenvectors of the Jacobian at the centred state (speed in m/s)."""
-    w, vecs = np.linalg.eig(model.jacobian(speed))
-    order = np.argsort(-w.real)
-    return w[order], vecs[:, order]
-
-
-def hunting_mode_index(w: np.ndarray, vecs: np.ndarray, a: float) -> int:
-    """Index of the hunting mode among eigenpairs ``(w, vecs)``.
-
-    Among the oscillatory modes (Im > 0) whose largest lateral displacement amplitude
-    (yaw angles scaled by the half gauge ``a``) belongs to a wheelset, the least damped
-    (largest real part). Falls back to the least-damped oscillatory mode.
-    """
-    best, best_any = -1, -1
-    for k in range(w.size):
-        if w[k].imag <= 1e-6:
-            continue
-        if best_any < 0 or w[k].real > w[best_any].real:
-            best_any = k
-        if _is_wheelset_mode(vecs[:N_DOF, k], a) and (best < 0 or w[k].real > w[best].real):
-            best = k
-    return best if best >= 0 else best_any
-
-
-def _is_wheelset_mode(q: np.ndarray, a: float) -> bool:
-    """True when the largest lateral amplitude of mode shape ``q`` (coordinates) is a wheelset's."""
-    lateral = np.abs(q[BODY_Y])
-    wheel = np.concatenate([np.abs(q[WHEELSET_Y]), a * np.abs(q[WHEELSET_PSI])])
-    return bool(wheel.max() >= lateral.max())
-
-
-def _mac(p: np.ndarray, q: np.ndarray) -> float:
-    """Modal assurance criterion of two complex mode shapes (0..1)."""
-    den = np.vdot(p, p).real * np.vdot(q, q).real
-    return float(abs(np.vdot(p, q)) ** 2 / den) if den > 0 else 0.0
-
-
 def eigen_analysis(
     vehicle: Vehicle, speeds_kmh: np.ndarray | list[float], creep_law: str = "heuristic"
 ) -> EigenResult:
@@ -157,7 +125,7 @@ def eigen_analysis(
             for k in range(N_STATE):
                 if eig[j, k].imag <= 1e-6:
                     continue
-                m = _mac(prev, shapes[j][:, k])
+                m = mac(prev, shapes[j][:, k])
                 if m > best_mac:
                     best, best_mac = k, m
             index[j] = best
@@ -174,8 +142,9 @@ def linear_critical_speed(
     scan_step_kmh: float = 20.0,
     creep_law: str = "heuristic",
     contact: object = None,
+    curve: Curve | Callable[[float], Curve] | None = None,
 ) -> LinearCriticalSpeed:
-    """Lowest speed at which the centred equilibrium loses stability (Hopf point).
+    """Lowest speed at which the centred (or steady-curving) equilibrium loses stability.
 
     The largest real part over all eigenvalues, ``g(v)``, is scanned on a grid of
     ``scan_step_kmh`` from ``min_kmh`` to ``max_kmh``. A sign change is refined by Brent's
@@ -197,6 +166,12 @@ def linear_critical_speed(
         See :class:`railhunt.model.Model`.
     contact : ContactGeometry, optional
         Tabulated contact geometry instead of the polynomials (see ``Model``).
+    curve : Curve or callable, optional
+        Stability about the steady-curving equilibrium in this curve's constant part
+        (:func:`railhunt.curving`) instead of the centred state on straight track. The
+        equilibrium moves with speed as the cant deficiency changes; it is followed from
+        each speed to the next. A callable gives the curve at each speed in m/s (a fixed
+        cant deficiency, :func:`railhunt.curve.fixed_deficiency`).
 
     Returns
     -------
@@ -212,9 +187,14 @@ def linear_critical_speed(
             f"min_kmh = {min_kmh} km/h is invalid: must be below max_kmh = {max_kmh} km/h"
         )
     model = Model(vehicle, creep_law=creep_law, contact=contact)
+    if curve is None:
+        def jacobian_at(kmh: float) -> np.ndarray:
+            return model.jacobian(kmh_to_ms(kmh))
+    else:
+        jacobian_at = EquilibriumPath(model, curve).jacobian_kmh
 
     def growth(kmh: float) -> float:
-        return float(np.max(np.linalg.eigvals(model.jacobian(kmh_to_ms(kmh))).real))
+        return float(np.max(np.linalg.eigvals(jacobian_at(kmh)).real))
 
     grid = np.unique(np.append(np.arange(min_kmh, max_kmh, scan_step_kmh), max_kmh))
     values = [growth(grid[0])]
@@ -236,7 +216,7 @@ def linear_critical_speed(
         if bracket is None:
             return LinearCriticalSpeed(math.nan, math.nan, complex(math.nan), False)
         speed = brentq(growth, *bracket, xtol=tol_kmh)
-    w, vecs = eigenvalues(model, kmh_to_ms(speed))
+    w, vecs = sorted_eig(jacobian_at(speed))
     k = int(np.argmax(w.real))
     if abs(w[k].imag) < 1e-9:
         is_hunting = False

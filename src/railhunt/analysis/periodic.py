@@ -24,6 +24,7 @@ quadratically, and the answer converges at fourth order in the step (tests).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -130,15 +131,27 @@ class Shooting:
         Speed (m/s) at which the automatic step is evaluated (use the highest speed).
     locate_switching : bool
         Locate damper blow-off switchings inside steps.
+    route : numpy.ndarray, optional
+        A time-invariant route (a curve's steady route); straight track by default.
+    equilibrium : callable, optional
+        ``equilibrium(speed) -> state``: the equilibrium at a speed (m/s) on ``route``
+        (the steady-curving state), from which orbits are told apart (default: the
+        centred state). With a route, an orbit's amplitudes are its half peak-to-peak
+        swings (it is not symmetric about the equilibrium).
     """
 
     T_SCALE = 1e-2
     V_SCALE = 1.0
 
     def __init__(self, model: Model, symmetric: bool = True, dt: float | None = None,
-                 dt_speed: float = 140.0, locate_switching: bool = True) -> None:  # fmt: skip
+                 dt_speed: float = 140.0, locate_switching: bool = True,
+                 route: np.ndarray | None = None,
+                 equilibrium: Callable[[float], np.ndarray] | None = None) -> None:  # fmt: skip
         self.model = model
         self.symmetric = symmetric
+        self.route = route
+        self.equilibrium = equilibrium
+        self._system = model.system(route=route)
         self.dt = auto_step(model, dt_speed) if dt is None else float(dt)
         if not (math.isfinite(self.dt) and 0 < self.dt <= 0.01):
             raise ValueError(f"dt = {self.dt!r} s is invalid: must be in (0, 0.01] s")
@@ -174,7 +187,7 @@ class Shooting:
         horizon = period / 2 if self.symmetric else period
         smp = self._no_samples if samples is None else samples
         x, _ = flow(np.ascontiguousarray(x0, dtype=np.float64), horizon, self.n_steps,
-                    self.locate, speed, self.model.system(), smp)  # fmt: skip
+                    self.locate, speed, self._system, smp)  # fmt: skip
         return x
 
     def _residual_state(self, x0: np.ndarray, period: float, speed: float) -> np.ndarray:
@@ -231,23 +244,31 @@ class Shooting:
         mult = np.linalg.eigvals(-m) ** 2 if self.symmetric else np.linalg.eigvals(m)
         return mult[np.argsort(-np.abs(mult))]
 
-    def amplitudes(self, x0: np.ndarray, period: float, speed: float) -> np.ndarray:
-        """Largest |lateral displacement| of each wheelset over the orbit (m), shape (4,).
+    def near_equilibrium(self, u: np.ndarray) -> bool:
+        """True when ``u`` lies within :data:`MIN_STATE` (scaled) of the equilibrium, which
+        solves the shooting equations for any period: not a cycle."""
+        if self.equilibrium is None:
+            return bool(np.max(np.abs(u[:-2])) < MIN_STATE)
+        x0, _, speed = self.unpack(u)
+        dev = (x0 - self.equilibrium(speed)) / STATE_SCALE
+        return bool(np.max(np.abs(dev[self._keep])) < MIN_STATE)
 
-        Each peak is refined by a parabola through the three samples around it.
+    def amplitudes(self, x0: np.ndarray, period: float, speed: float) -> np.ndarray:
+        """Amplitude of each wheelset's lateral displacement over the orbit (m), shape (4,).
+
+        On straight track the largest ``|y|`` (half a symmetric orbit holds both
+        extremes); on a route half the peak-to-peak swing. Each extreme is refined by a
+        parabola through the three samples around it.
         """
         samples = np.empty((self.n_steps + 1, WHEELSET_Y[-1] + 1))
         self.end_state(x0, period, speed, samples)
         out = np.empty(4)
         for j, col in enumerate(WHEELSET_Y):
-            y = np.abs(samples[:, col])  # half a symmetric orbit holds both extremes
-            k = int(np.argmax(y))
-            out[j] = y[k]
-            if 0 < k < y.size - 1:
-                a, b, c = y[k - 1], y[k], y[k + 1]
-                den = a - 2 * b + c
-                if den < 0:
-                    out[j] = b - 0.125 * (a - c) ** 2 / den
+            if self.route is None:
+                out[j] = _peak(np.abs(samples[:, col]))
+            else:
+                y = samples[:, col]
+                out[j] = 0.5 * (_peak(y) + _peak(-y))
         return out
 
     def orbit(self, u: np.ndarray, residual: float = 0.0, iterations: int = 0,
@@ -260,6 +281,18 @@ class Shooting:
         amps = self.amplitudes(x0, period, speed)
         return PeriodicOrbit(speed, x0, period, float(amps[0]), mult, stable, residual,
                              iterations, self.symmetric, amps)  # fmt: skip
+
+
+def _peak(y: np.ndarray) -> float:
+    """Largest value of a sampled curve, refined by a parabola through its neighbours."""
+    k = int(np.argmax(y))
+    out = float(y[k])
+    if 0 < k < y.size - 1:
+        a, b, c = y[k - 1], y[k], y[k + 1]
+        den = a - 2 * b + c
+        if den < 0:
+            out = float(b - 0.125 * (a - c) ** 2 / den)
+    return out
 
 
 def newton(
@@ -369,7 +402,7 @@ def periodic_orbit(
             f"shooting did not converge at {speed_kmh:.1f} km/h "
             f"(scaled residual {norm:.2e} after {it} iterations)"
         )
-    if np.max(np.abs(w[:-1])) < MIN_STATE:
+    if shoot.near_equilibrium(np.append(w, vs)):
         raise RuntimeError(
             f"shooting at {speed_kmh:.1f} km/h fell onto the equilibrium (which solves the "
             "shooting equations for any period): no limit cycle near the guess"

@@ -1,8 +1,9 @@
 """Options shared by the commands, with their checks, and what they build.
 
 The vehicle (``--vehicle``/``--set``), number ranges, speeds in km/h, the single track
-defect (``--amplitude``/``--wavelength``), the integrator (``--method``/``--dt``), a random
-or measured track (``--spectrum``/``--seed``/``--irregularity``), output files and a sweep's
+defect (``--amplitude``/``--wavelength``), a curve (``--curve-radius``/``--cant`` in mm/
+``--transition``/``--direction``), the integrator (``--method``/``--dt``), a random or
+measured track (``--spectrum``/``--seed``/``--irregularity``), output files and a sweep's
 results file. Units are converted here, at the edge: the library is called in SI units.
 The library is imported inside the functions, so ``railhunt --help`` stays fast.
 """
@@ -17,17 +18,28 @@ from typing import TYPE_CHECKING, Any
 import click
 
 from railhunt.cli.errors import CliError, user_input
+from railhunt.cli.rules import Requires
 
 if TYPE_CHECKING:
+    from railhunt.curve import Curve
     from railhunt.irregularity import TrackIrregularity
     from railhunt.track import SingleDefect
     from railhunt.vehicle import Vehicle
 
 __all__ = [
+    "CURVE_LEAD_IN",
+    "CURVE_RULES",
     "MEASURED_TAPER",
+    "build_curve",
     "build_vehicle",
+    "cant_option",
     "check_outputs",
+    "curve_json",
+    "curve_options",
+    "default_transition",
     "defect_options",
+    "describe_curve",
+    "direction_option",
     "file_option",
     "initial_amplitude_option",
     "kmh_option",
@@ -35,10 +47,12 @@ __all__ = [
     "measured_track",
     "method_options",
     "number_range",
+    "radius_option",
     "random_track_options",
     "results_argument",
     "single_defect",
     "speed_count",
+    "transition_option",
     "vehicle_options",
 ]
 
@@ -303,6 +317,111 @@ def measured_track(path: Path) -> TrackIrregularity:
 
     raw = load_irregularity(path)
     return load_irregularity(path, taper=min(MEASURED_TAPER, raw.length / 2))
+
+
+# --------------------------------------------------------------------------- curves
+
+#: Straight track (m) between the end of the single defect (or the start of the run) and
+#: the entry transition of ``--curve-radius`` in ``simulate``: the curve comes after the
+#: defect, so that the run shows the defect's response and then the curve entry.
+CURVE_LEAD_IN = 20.0
+
+
+def default_transition(radius: float) -> float:
+    """Transition length (m) used when ``--transition`` is not given: R / 10 within
+    [20, 300] m (e.g. 300 m for R >= 3000 m, 100 m for 1000 m, 30 m for 300 m)."""
+    return min(300.0, max(20.0, radius / 10.0))
+
+
+def radius_option(flag: str, dest: str, required: bool, help: str) -> Decorator:
+    """A curve radius option (m), finite and at least 50 m."""
+    return click.option(flag, dest, type=float, required=required, metavar="M",
+                        callback=number_range("m", 50.0, math.inf, low_open=False,
+                                              optional=not required),
+                        help=help)  # fmt: skip
+
+
+def cant_option(help: str, flag: str = "--cant", dest: str = "cant_mm") -> Decorator:
+    """The cant (mm) of a curve: height of the outer rail over the inner one, in [0, 500]
+    mm over the 1500 mm rail-centre distance (:class:`railhunt.Curve`'s range)."""
+    return click.option(flag, dest, type=float, default=None, metavar="MM",
+                        callback=number_range("mm", 0.0, 500.0, low_open=False, optional=True),
+                        help=help)  # fmt: skip
+
+
+def transition_option(help: str) -> Decorator:
+    """``--transition M``: length of each transition curve, in [0, 2000] m."""
+    return click.option("--transition", "transition", type=float, default=None, metavar="M",
+                        callback=number_range("m", 0.0, 2000.0, low_open=False, optional=True),
+                        help=help)  # fmt: skip
+
+
+def direction_option(help: str) -> Decorator:
+    """``--direction left|right``: which way the curve turns (left: toward +y)."""
+    return click.option("--direction", type=click.Choice(["left", "right"]), default="left",
+                        show_default=True, help=help)  # fmt: skip
+
+
+#: The rules every command with :func:`curve_options` declares.
+CURVE_RULES = (
+    Requires(("--cant", "--transition", "--direction"), "--curve-radius",
+             "{a} describes the curve and needs {b} (its radius in m)"),
+)  # fmt: skip
+
+
+def curve_options(transition_help: str) -> Decorator:
+    """Add ``--curve-radius M``, ``--cant MM``, ``--transition M`` and ``--direction`` (run
+    in a curve instead of on straight track); declare :data:`CURVE_RULES` with them.
+
+    The command receives ``curve_radius``, ``cant_mm``, ``transition`` and ``direction``;
+    :func:`build_curve` makes the :class:`railhunt.Curve`.
+    """
+
+    def decorate(func: Callable[..., Any]) -> Callable[..., Any]:
+        func = direction_option("Which way the curve of --curve-radius turns (left: "
+                                "toward +y).")(func)  # fmt: skip
+        func = transition_option(transition_help)(func)
+        func = cant_option("Cant of the curve of --curve-radius (mm): height of the outer "
+                           "rail over the inner one over the 1500 mm rail-centre distance, "
+                           "in [0, 500] mm [default: 0].")(func)  # fmt: skip
+        return radius_option("--curve-radius", "curve_radius", False,
+                             "Run in a curve of this radius (m, at least 50 m) instead of "
+                             "on straight track.")(func)  # fmt: skip
+
+    return decorate
+
+
+def build_curve(radius: float | None, cant_mm: float | None, transition: float | None,
+                direction: str = "left", start: float = 0.0) -> Curve | None:  # fmt: skip
+    """The curve the curve options describe, in SI units (None without a radius).
+
+    ``cant_mm`` in mm (None: 0); ``transition`` in m (None: :func:`default_transition`);
+    ``start`` (m) where the entry transition begins.
+    """
+    if radius is None:
+        return None
+    from railhunt import Curve
+
+    if transition is None:
+        transition = default_transition(radius)
+    with user_input():
+        return Curve(radius, cant=(cant_mm or 0.0) * 1e-3, transition=transition,
+                     direction=direction, start=start)  # fmt: skip
+
+
+def curve_json(curve: Curve | None) -> dict[str, Any] | None:
+    """The curve as the commands' JSON reports it (radius and lengths in m, cant in mm)."""
+    if curve is None:
+        return None
+    return {"radius_m": curve.radius, "cant_mm": curve.cant * 1e3,
+            "transition_m": curve.transition, "direction": curve.direction}  # fmt: skip
+
+
+def describe_curve(curve: Curve, transition: bool = True) -> str:
+    """A curve in words: radius, direction, cant (and the length of its transitions)."""
+    text = f"R = {curve.radius:g} m to the {curve.direction}, cant {curve.cant * 1e3:g} mm"
+    return text + (f", transitions {curve.transition:g} m" if transition else "")
+
 
 
 def method_options(func: Callable[..., Any], stochastic: bool = False) -> Callable[..., Any]:

@@ -122,10 +122,12 @@ def json_safe(obj: Any) -> Any:
     return value if math.isfinite(value) else None
 
 
-def linear_critical_speed_line(linear: Any) -> str:
-    """The line reporting a :func:`railhunt.linear_critical_speed` result (km/h, Hz)."""
+def linear_critical_speed_line(linear: Any, curved: bool = False) -> str:
+    """The line reporting a :func:`railhunt.linear_critical_speed` result (km/h, Hz);
+    ``curved``: of the steady-curving equilibrium rather than centred running."""
     if not math.isfinite(linear.speed_kmh):
-        return "linear critical speed: none below 1000 km/h (centred running stays stable)"
+        state = "the steady-curving equilibrium" if curved else "centred running"
+        return f"linear critical speed: none below 1000 km/h ({state} stays stable)"
     mode = "hunting mode" if linear.is_hunting_mode else "not the hunting mode"
     return (
         f"linear critical speed: {linear.speed_kmh:.1f} km/h "

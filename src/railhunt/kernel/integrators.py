@@ -19,7 +19,7 @@ from collections.abc import Callable
 import numpy as np
 from numba import njit
 
-from railhunt.kernel.layout import SystemArrays
+from railhunt.kernel.layout import NO_REFCOUNT, SystemArrays
 from railhunt.kernel.rhs import rhs
 from railhunt.kernel.track import alignment
 
@@ -51,21 +51,22 @@ def default_atol(n_dof: int, n_damper: int) -> np.ndarray:
     return np.concatenate([np.full(n_dof, 1e-8), np.full(n_dof, 1e-7), np.full(n_damper, 1e-3)])
 
 
-@njit(cache=True)
+@njit(cache=True, **NO_REFCOUNT)
 def check_state(t: float, x: np.ndarray, y_limit: float, v: float, s: SystemArrays) -> int:
     """Status of state ``x`` at time ``t``: DIVERGED if non-finite, DERAILED if a wheelset
     is more than ``y_limit`` (m) off the rails laterally, else OK."""
+    ws, delay, trk, trs = s.wheelsets, s.wheelset_delay, s.track, s.track_samples
     for i in range(x.shape[0]):
         if not np.isfinite(x[i]):
             return DIVERGED
-    for j in range(s.wheelsets.shape[0]):
-        yr, _ = alignment(v * t - s.wheelset_delay[j], s.track, s.track_samples)
-        if abs(x[s.wheelsets[j, 0]] - yr) > y_limit:
+    for j in range(ws.shape[0]):
+        yr, _ = alignment(v * t - delay[j], trk, trs)
+        if abs(x[ws[j, 0]] - yr) > y_limit:
             return DERAILED
     return OK
 
 
-@njit(cache=True)
+@njit(cache=True, **NO_REFCOUNT)
 def rk4_step(t, x, h, v, s, k1, k2, k3, k4, tmp, out):
     """One classical Runge-Kutta step of size ``h`` from ``(t, x)`` into ``out``.
 

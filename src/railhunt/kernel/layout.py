@@ -27,6 +27,13 @@ from typing import NamedTuple
 
 import numpy as np
 
+#: numba options for kernel functions that allocate nothing and run millions of times (the
+#: right-hand side, one integrator step, the state check): compiled without reference
+#: counting of arrays, which otherwise costs an atomic increment and decrement for every
+#: array taken out of the :class:`SystemArrays` bundle at every call (a third of the
+#: right-hand side's time). Such a function must not allocate or return an array.
+NO_REFCOUNT = {"_nrt": False}
+
 
 @dataclass(frozen=True)
 class Body:
@@ -131,6 +138,10 @@ class StateLayout:
         """Names of the wheelsets (bodies named ``wheelset*``), leading first."""
         return tuple(b.name for b in self.bodies if b.name.startswith("wheelset"))
 
+    def body_index(self) -> np.ndarray:
+        """Indices of ``(y, psi, phi)`` of every body in ``q`` (-1: none), shape (n, 3)."""
+        return np.array([self.body_dofs(b) for b in self.body_names], dtype=np.int64)
+
     def wheelset_index(self) -> np.ndarray:
         """Indices of ``(y, psi)`` of every wheelset in ``q``, shape ``(n_wheelsets, 2)``."""
         return np.array(
@@ -179,6 +190,8 @@ BODY_DOFS: dict[str, tuple[int, int, int]] = {b: LAYOUT.body_dofs(b) for b in LA
 BODY_Y = np.array([LAYOUT.dof(n) for n in ("y_c", "y_t1", "y_t2")])
 #: Roll angles of the bogie frames in q.
 BOGIE_PHI = np.array([LAYOUT.dof(n) for n in ("phi_t1", "phi_t2")])
+#: Indices of (y, psi, phi) of each body in q (-1: none), shape (7, 3).
+BODY_INDEX = LAYOUT.body_index()
 #: Indices of (y, psi) of each wheelset in q, shape (4, 2).
 WHEELSET_INDEX = LAYOUT.wheelset_index()
 #: Indices of the wheelsets' lateral displacements (and in the state vector).
@@ -221,7 +234,10 @@ class WR(IntEnum):
     CREEP_LAW = 18  # railhunt.kernel.creep.CreepLaw code
     INV_MW = 19  # 1 / wheelset mass (1/kg)
     INV_JW = 20  # 1 / wheelset yaw inertia (1/(kg*m^2))
-    TABLE = 21  # number of contact-table points (0: polynomials), then the table
+    W = 21  # axle load: the mass carried by one wheelset (kg)
+    G = 22  # acceleration of gravity (m/s^2)
+    MH = 23  # sum of mass times height above rail carried by one wheelset (kg*m): load transfer
+    TABLE = 24  # number of contact-table points (0: polynomials), then the table
 
 
 #: Length of the wheel/rail vector without a contact table (the 0 in ``TABLE`` included).
@@ -235,6 +251,39 @@ class DamperParam(IntEnum):
     C_D1 = 1  # first-stage damping (N*s/m)
     C_D2 = 2  # second-stage damping (N*s/m)
     F_U = 3  # blow-off force (N)
+
+
+class StopParam(IntEnum):
+    """Columns of the bump stop parameter array (one row per bump stop)."""
+
+    GAP = 0  # free play (m)
+    K1 = 1  # linear stiffness once in contact (N/m)
+    K3 = 2  # cubic (progressive) stiffness (N/m^3)
+
+
+class RouteColumn(IntEnum):
+    """Columns of the route array: one row per segment of track geometry.
+
+    Within a segment starting at ``S0``, at ``u = s - S0``: curvature
+    ``kappa = KAPPA0 + DKAPPA u`` (1/m, + for a curve to the left), heading
+    ``theta = THETA0 + KAPPA0 u + DKAPPA u^2 / 2`` (rad), its integral
+    ``Phi = PHI0 + THETA0 u + KAPPA0 u^2 / 2 + DKAPPA u^3 / 6`` (m) and cant angle
+    ``CANT0 + DCANT u`` (rad, + when a point above the track moves toward +y). Before
+    the first row the track is straight and aligned with heading 0.
+    """
+
+    S0 = 0  # start of the segment (m)
+    S1 = 1  # end of the segment (m)
+    KAPPA0 = 2
+    DKAPPA = 3
+    THETA0 = 4
+    PHI0 = 5
+    CANT0 = 6
+    DCANT = 7
+
+
+#: Number of route columns.
+N_ROUTE = len(RouteColumn)
 
 
 class SystemArrays(NamedTuple):
@@ -264,6 +313,25 @@ class SystemArrays(NamedTuple):
         Track input ``[code, p1, p2, p3]`` (:mod:`railhunt.kernel.track`).
     track_samples : numpy.ndarray
         Alignment samples of a sampled track (m), else one dummy entry.
+    stop_rows : numpy.ndarray, shape (n_stop, n_dof)
+        Deformation rows of the bump stops (deformation = ``stop_rows @ q``).
+    stop_acc : numpy.ndarray, shape (n_dof, n_stop)
+        ``-M^-1 B_s^T``: accelerations per unit bump-stop force.
+    stop : numpy.ndarray, shape (n_stop, 3)
+        Bump stop parameters, columns :class:`StopParam`.
+    route : numpy.ndarray, shape (n_segments, N_ROUTE)
+        Track geometry (:class:`RouteColumn`); no rows: straight track.
+    bodies : numpy.ndarray of int64, shape (n_bodies, 3)
+        Indices of each body's ``(y, psi, phi)`` in ``q`` (-1: none); the first body is
+        the reference of the curve's geometric offsets.
+    body_delay : numpy.ndarray, shape (n_bodies,)
+        Distance of each body behind the leading wheelset (m).
+    suspension : numpy.ndarray, shape (n_dof, 2 n_dof)
+        ``-M^-1 [K, C]`` of the suspension alone (no gravitational terms): accelerations
+        from the geometric offsets a curve imposes.
+    scratch : numpy.ndarray, shape (3 n_dof,)
+        Work space of the curve terms (overwritten at every call; the kernel is used by
+        one thread at a time per bundle).
     """
 
     linear: np.ndarray
@@ -275,3 +343,11 @@ class SystemArrays(NamedTuple):
     wheelset_delay: np.ndarray
     track: np.ndarray
     track_samples: np.ndarray
+    stop_rows: np.ndarray
+    stop_acc: np.ndarray
+    stop: np.ndarray
+    route: np.ndarray
+    bodies: np.ndarray
+    body_delay: np.ndarray
+    suspension: np.ndarray
+    scratch: np.ndarray

@@ -1,9 +1,14 @@
 """The one right-hand side of the vehicle's equations of motion, and its Jacobian.
 
-``M q'' = -(K + G) q - C q' - B_d^T F_d + Q_wheel/rail``, with ``K``, ``C`` assembled from
-the suspension elements, ``G`` the gravitational roll terms, ``B_d`` the yaw damper
-elongation rows, and ``Q_wheel/rail`` the creep and gravitational forces on the wheelsets.
-Each damper force obeys ``dF/dt = K_d (B_d q' - v_d(F))`` (Maxwell element).
+``M q'' = -(K + G) q - C q' - B_d^T F_d - B_s^T F_s + Q_wheel/rail (+ curve terms)``, with
+``K``, ``C`` assembled from the suspension elements, ``G`` the gravitational roll terms,
+``B_d`` the yaw damper elongation rows, ``B_s`` the bump stops' rows and ``Q_wheel/rail``
+the creep and gravitational forces on the wheelsets. Each damper force obeys
+``dF/dt = K_d (B_d q' - v_d(F))`` (Maxwell element). In a curve every coordinate is
+measured from the track at its body's own position; the suspension then deforms by
+``B (q + q_geo)`` and each body feels the unbalanced lateral acceleration of the curve
+(:func:`curve_geometry`); the wheels carry their own quasi-static loads
+(:func:`wheel_loads`).
 
 :func:`rhs` is the only place where these equations are written. Simulation, the Jacobian
 (linear stability), the shooting flow (limit cycles, continuation) and the derived output
@@ -19,162 +24,238 @@ import math
 import numpy as np
 from numba import njit
 
-from railhunt.kernel.contact import wheel_geometry
-from railhunt.kernel.creep import CreepLaw, heuristic_saturation, polach_saturation
+from railhunt.kernel.bumpstop import bump_stop_force
 from railhunt.kernel.damper import damper_velocity
-from railhunt.kernel.layout import WR, DamperParam, SystemArrays
+from railhunt.kernel.layout import NO_REFCOUNT, WR, DamperParam, StopParam, SystemArrays
+from railhunt.kernel.route import route_point
 from railhunt.kernel.track import alignment
+from railhunt.kernel.wheelset import wheelset_contact, wheelset_forces
+
+__all__ = [
+    "curve_geometry", "curve_offsets", "derived", "jacobian", "rhs", "wheel_loads",
+    "wheelset_forces", "wheelset_track_forces",
+]  # fmt: skip
 
 
 @njit(cache=True)
-def wheelset_forces(
-    y_rel: float, dy: float, psi: float, psi_rel: float, dpsi: float, v: float, wr: np.ndarray
-) -> tuple[float, float]:
-    """Lateral force and yaw moment of the rails on one wheelset (Eqs. 25-33).
+def wheel_loads(s_track: float, v: float, wr: np.ndarray,
+                route: np.ndarray) -> tuple[float, float, float]:  # fmt: skip
+    """Quasi-static wheel loads (N) and the track's yaw rate (rad/s) at track position ``s``.
 
-    Parameters
-    ----------
-    y_rel : float
-        Lateral displacement of the wheelset relative to the track (m), + left.
-    dy : float
-        Lateral velocity (m/s).
-    psi : float
-        Yaw angle (rad) in the absolute frame (sets the lateral creepage).
-    psi_rel : float
-        Yaw angle relative to the local rail direction (rad) (sets the gravitational moment).
-    dpsi : float
-        Yaw rate (rad/s).
-    v : float
-        Forward speed (m/s), > 0.
-    wr : numpy.ndarray
-        Wheel/rail parameter vector (slots :class:`railhunt.kernel.layout.WR`).
+    On straight track (no route) both loads are the static ``N`` and the yaw rate is 0.
+    In a curve of curvature ``kappa`` and cant angle ``phi`` an axle of mass ``W`` presses
+    on the track plane with ``W (g cos phi + v^2 kappa sin phi)``, shared equally; the
+    unbalanced lateral acceleration ``a = v^2 kappa cos phi - g sin phi`` acting on the
+    masses above the rail (``MH = sum m H``) moves ``MH a / 2a_c`` from the inner to the
+    outer wheel (``2 a_c``: the distance between the contact points). A load is kept at
+    1 % of ``N`` or more (a wheel that lifts has no creep forces left to compute).
 
     Returns
     -------
     tuple of float
-        Lateral force (N) and yaw moment (N*m) on the wheelset in track coordinates:
-        creep forces after saturation plus the gravitational (normal-force) terms.
+        ``(Q_left, Q_right, v * kappa)``.
     """
-    f11, f22, f23, f33 = wr[WR.F11], wr[WR.F22], wr[WR.F23], wr[WR.F33]
-    a, r0 = wr[WR.A], wr[WR.R0]
     n_load = wr[WR.N]
-    r_l, r_r, d_l, d_r = wheel_geometry(y_rel, wr)
-    cdl, sdl = math.cos(d_l), math.sin(d_l)
-    cdr, sdr = math.cos(d_r), math.sin(d_r)
-    cpsi, spsi = math.cos(psi), math.sin(psi)
-    omega = v / r0
-    inv_v = 1.0 / v
-    # Creepages (Eq. 25).
-    base = v * cpsi + dy * spsi
-    xl = (base - a * dpsi - r_l * omega) * inv_v
-    xr = (base + a * dpsi - r_r * omega) * inv_v
-    lat = (dy * cpsi - v * spsi) * inv_v
-    yl = lat * cdl
-    yr = lat * cdr
-    sl = (dpsi * cdl - omega * sdl) * inv_v
-    sr = (dpsi * cdr + omega * sdr) * inv_v
-    # Kalker's linear forces (Eq. 26).
-    fxl = -f11 * xl
-    fxr = -f11 * xr
-    fyl = -f22 * yl - f23 * sl
-    fyr = -f22 * yr - f23 * sr
-    mzl = f23 * yl - f33 * sl
-    mzr = f23 * yr - f33 * sr
-    # Saturation (Eqs. 27-28).
-    law = int(wr[WR.CREEP_LAW])
-    if law != CreepLaw.LINEAR:
-        mun = wr[WR.MU] * n_load
-        bl = math.sqrt(fxl * fxl + fyl * fyl) / mun
-        br = math.sqrt(fxr * fxr + fyr * fyr) / mun
-        if law == CreepLaw.HEURISTIC:
-            al = heuristic_saturation(0.5 * (bl + br))
-            ar = al
-        elif law == CreepLaw.POLACH:
-            al = polach_saturation(bl)
-            ar = polach_saturation(br)
-        else:
-            al = heuristic_saturation(bl)
-            ar = heuristic_saturation(br)
-        fxl *= al
-        fyl *= al
-        fxr *= ar
-        fyr *= ar
-    # Into track coordinates (Eqs. 29-30).
-    f_lat = (fyl * cdl + fyr * cdr) * cpsi + (fxl + fxr) * spsi
-    m_yaw = (fxr - fxl) * a + mzl * cdl + mzr * cdr
-    tl = sdl / cdl
-    tr = sdr / cdr
-    f_grav = n_load * (tr - tl)
-    m_grav = n_load * a * math.sin(psi_rel) * (tl + tr)
-    return f_lat + f_grav, m_yaw + m_grav
+    if route.shape[0] == 0:
+        return n_load, n_load, 0.0
+    kappa, _, _, cant, _, _ = route_point(s_track, route)
+    if kappa == 0.0 and cant == 0.0:
+        return n_load, n_load, 0.0
+    c, sn = math.cos(cant), math.sin(cant)
+    g = wr[WR.G]
+    q_mean = 0.5 * wr[WR.W] * (g * c + v * v * kappa * sn)
+    shift = wr[WR.MH] * (v * v * kappa * c - g * sn) / (2.0 * wr[WR.A])
+    floor = 0.01 * n_load
+    return max(q_mean - shift, floor), max(q_mean + shift, floor), v * kappa
 
 
 @njit(cache=True)
 def wheelset_track_forces(
     j: int, t: float, x: np.ndarray, v: float, s: SystemArrays
-) -> tuple[float, float]:
-    """Lateral force (N) and yaw moment (N*m) of the rails on wheelset ``j`` at state ``x``.
+) -> tuple[float, float, float, float, float, float]:
+    """Forces of the rails on wheelset ``j`` at state ``x`` and time ``t``.
 
-    The wheelset meets the track input at track position ``v t - delay_j``; its
-    displacement relative to the rails sets the contact geometry, its yaw relative to
-    the local rail direction the gravitational moment.
+    The wheelset meets the track at position ``v t - delay_j``: the track input there
+    (its displacement relative to the rails sets the contact geometry, its yaw relative to
+    the local rail direction the gravitational moment) and, in a curve, its wheel loads
+    and the track's yaw rate.
+
+    Returns
+    -------
+    tuple of float
+        ``(F_y, M_z, F_left, F_right, Q_left, Q_right)`` in N and N*m (see
+        :func:`railhunt.kernel.wheelset.wheelset_contact`).
     """
     nq = s.linear.shape[0]  # rates start at x[nq] (layout.py)
     iy = s.wheelsets[j, 0]
     ip = s.wheelsets[j, 1]
-    yr, slope = alignment(v * t - s.wheelset_delay[j], s.track, s.track_samples)
-    return wheelset_forces(x[iy] - yr, x[nq + iy], x[ip], x[ip] - slope, x[nq + ip], v,
-                           s.wheel_rail)  # fmt: skip
+    pos = v * t - s.wheelset_delay[j]
+    yr, slope = alignment(pos, s.track, s.track_samples)
+    q_l, q_r, track_rate = wheel_loads(pos, v, s.wheel_rail, s.route)
+    fy, mz, f_l, f_r = wheelset_contact(x[iy] - yr, x[nq + iy], x[ip], x[ip] - slope,
+                                        x[nq + ip], x[nq + ip] + track_rate, v, s.wheel_rail,
+                                        q_l, q_r)  # fmt: skip
+    return fy, mz, f_l, f_r, q_l, q_r
 
 
 @njit(cache=True)
+def curve_offsets(t: float, v: float, wr: np.ndarray, route: np.ndarray, bodies: np.ndarray,
+                  body_delay: np.ndarray, geo: np.ndarray) -> None:  # fmt: skip
+    """Geometric offsets a curve imposes on the suspension, and the track frames' inertia.
+
+    Each body's coordinates are measured from the track at its own position
+    ``v t - delay_b``. Seen from the first body's track frame (the car body's), the track
+    frame of body ``b`` is turned by ``theta_b - theta_0``, rolled by ``cant_b - cant_0``
+    and shifted laterally by the offset of its track point from the tangent at the first
+    body (the versine ``kappa d^2 / 2`` in a constant curve). Writes, for ``n`` coordinates,
+    these offsets and their rates into ``geo[:2n]`` (``[q_geo, dq_geo/dt]``: every
+    suspension element deforms by ``B (q + q_geo)``), and into ``geo[2n:3n]`` the
+    accelerations that following the track adds to each body: ``-a`` laterally, with
+    ``a = v^2 kappa cos phi - g sin phi`` the unbalanced (cant-deficient) lateral
+    acceleration, and ``-v^2 dkappa/ds`` in yaw (the track frame's angular acceleration in
+    a transition). Entries of absent coordinates stay 0.
+    """
+    n = geo.shape[0] // 3
+    for i in range(geo.shape[0]):
+        geo[i] = 0.0
+    g = wr[WR.G]
+    s_ref = v * t - body_delay[0]
+    k_r, th_r, ph_r, c_r, _, dc_r = route_point(s_ref, route)
+    for b in range(bodies.shape[0]):
+        pos = v * t - body_delay[b]
+        kappa, theta, phi, cant, dkappa, dcant = route_point(pos, route)
+        ds = pos - s_ref
+        iy, ip, ir = bodies[b, 0], bodies[b, 1], bodies[b, 2]
+        geo[iy] = phi - ph_r - th_r * ds
+        geo[n + iy] = v * (theta - th_r - k_r * ds)
+        geo[ip] = theta - th_r
+        geo[n + ip] = v * (kappa - k_r)
+        geo[2 * n + iy] = -(v * v * kappa * math.cos(cant) - g * math.sin(cant))
+        geo[2 * n + ip] = -v * v * dkappa
+        if ir >= 0:
+            geo[ir] = cant - c_r
+            geo[n + ir] = v * (dcant - dc_r)
+
+
+@njit(cache=True)
+def curve_geometry(t: float, v: float, s: SystemArrays) -> np.ndarray:
+    """:func:`curve_offsets` of the bundle at time ``t``: ``[q_geo, dq_geo/dt, body_acc]``
+    (a new array of length ``3 n_dof``), for the analyses."""
+    geo = np.zeros(3 * s.linear.shape[0])
+    curve_offsets(t, v, s.wheel_rail, s.route, s.bodies, s.body_delay, geo)
+    return geo
+
+
+@njit(cache=True, **NO_REFCOUNT)
 def rhs(t: float, x: np.ndarray, v: float, s: SystemArrays, out: np.ndarray) -> None:
     """Time derivative of the state (writes ``out``, allocates nothing).
 
     Parameters
     ----------
     t : float
-        Time (s); only the track input depends on it.
+        Time (s); the track input and the route depend on it.
     x : numpy.ndarray, shape (n_state,)
         State (:mod:`railhunt.kernel.layout`).
     v : float
         Forward speed (m/s).
     s : SystemArrays
-        The model's arrays and the track input.
+        The model's arrays, the track input and the route.
     out : numpy.ndarray, shape (n_state,)
         Receives dx/dt.
     """
-    nq = s.linear.shape[0]  # coordinates x[:nq], rates x[nq:2nq], damper forces after
-    nd = s.damper.shape[0]
+    # Compiled without numba's reference counting (NO_REFCOUNT, layout.py): rhs allocates
+    # nothing, and counting the bundle's arrays at every call cost more than the physics
+    # (measured per call on straight track: 600 ns counted, 420 ns not).
+    lin, bd, dd, dpar = s.linear, s.damper_rows, s.damper_acc, s.damper
+    wr, ws, delay, trk, trs = s.wheel_rail, s.wheelsets, s.wheelset_delay, s.track, s.track_samples
+    stop_rows, stop_acc, stop, route = s.stop_rows, s.stop_acc, s.stop, s.route
+    geo, susp, bodies, body_delay = s.scratch, s.suspension, s.bodies, s.body_delay
+    nq = lin.shape[0]  # coordinates x[:nq], rates x[nq:2nq], damper forces after
     fz = 2 * nq
+    curved = route.shape[0] > 0
+
+    # Suspension: rates, linear springs and dampers with gravity's roll terms.
     for i in range(nq):
         out[i] = x[nq + i]
     for i in range(nq):
         acc = 0.0
         for k in range(2 * nq):
-            acc += s.linear[i, k] * x[k]
+            acc += lin[i, k] * x[k]
         out[nq + i] = acc
-    for d in range(nd):
+    # Yaw dampers (Maxwell elements): the force is a state.
+    for d in range(dpar.shape[0]):
         f = x[fz + d]
         rate = 0.0
         for k in range(nq):
-            rate += s.damper_rows[d, k] * x[nq + k]
-        v_damp = damper_velocity(f, s.damper[d, DamperParam.C_D1], s.damper[d, DamperParam.C_D2],
-                                 s.damper[d, DamperParam.F_U])  # fmt: skip
-        out[fz + d] = s.damper[d, DamperParam.K_D] * (rate - v_damp)
+            rate += bd[d, k] * x[nq + k]
+        v_damp = damper_velocity(f, dpar[d, DamperParam.C_D1], dpar[d, DamperParam.C_D2],
+                                 dpar[d, DamperParam.F_U])  # fmt: skip
+        out[fz + d] = dpar[d, DamperParam.K_D] * (rate - v_damp)
         for i in range(nq):
-            out[nq + i] += s.damper_acc[i, d] * f
-    inv_mw = s.wheel_rail[WR.INV_MW]
-    inv_jw = s.wheel_rail[WR.INV_JW]
-    for j in range(s.wheelsets.shape[0]):
-        fy, mz = wheelset_track_forces(j, t, x, v, s)
-        out[nq + s.wheelsets[j, 0]] += fy * inv_mw
-        out[nq + s.wheelsets[j, 1]] += mz * inv_jw
+            out[nq + i] += dd[i, d] * f
+    # Bump stops (in a curve corrected below for the geometric offsets).
+    for k in range(stop.shape[0]):
+        dist = 0.0
+        for i in range(nq):
+            dist += stop_rows[k, i] * x[i]
+        f = bump_stop_force(dist, stop[k, StopParam.GAP], stop[k, StopParam.K1],
+                            stop[k, StopParam.K3])  # fmt: skip
+        if f != 0.0:
+            for i in range(nq):
+                out[nq + i] += stop_acc[i, k] * f
+
+    # Wheel/rail forces: wheelset j meets the track at v t - delay_j (the track input there,
+    # and in a curve its wheel loads and the track's yaw rate).
+    inv_mw = wr[WR.INV_MW]
+    inv_jw = wr[WR.INV_JW]
+    n_load = wr[WR.N]
+    for j in range(ws.shape[0]):
+        iy = ws[j, 0]
+        ip = ws[j, 1]
+        pos = v * t - delay[j]
+        yr, slope = alignment(pos, trk, trs)
+        if curved:
+            q_l, q_r, track_rate = wheel_loads(pos, v, wr, route)
+        else:
+            q_l, q_r, track_rate = n_load, n_load, 0.0
+        fy, mz, _, _ = wheelset_contact(x[iy] - yr, x[nq + iy], x[ip], x[ip] - slope,
+                                        x[nq + ip], x[nq + ip] + track_rate, v, wr, q_l, q_r)
+        out[nq + iy] += fy * inv_mw
+        out[nq + ip] += mz * inv_jw
+
+    if not curved:
+        return
+    # A curve: the suspension's forces from the geometric offsets of the bodies' track
+    # frames, the unbalanced lateral acceleration and the frames' angular acceleration
+    # (curve_offsets), the yaw dampers' stroke rate from the frames' relative motion (the
+    # Maxwell element's force rate is linear in it), the bump stops at B_s (q + q_geo).
+    curve_offsets(t, v, wr, route, bodies, body_delay, geo)
+    for i in range(nq):
+        acc = geo[fz + i]
+        for k in range(2 * nq):
+            acc += susp[i, k] * geo[k]
+        out[nq + i] += acc
+    for d in range(dpar.shape[0]):
+        rate = 0.0
+        for k in range(nq):
+            rate += bd[d, k] * geo[nq + k]
+        out[fz + d] += dpar[d, DamperParam.K_D] * rate
+    for k in range(stop.shape[0]):
+        dist = 0.0
+        shift = 0.0
+        for i in range(nq):
+            dist += stop_rows[k, i] * x[i]
+            shift += stop_rows[k, i] * geo[i]
+        gap, k1, k3 = stop[k, StopParam.GAP], stop[k, StopParam.K1], stop[k, StopParam.K3]
+        df = bump_stop_force(dist + shift, gap, k1, k3) - bump_stop_force(dist, gap, k1, k3)
+        if df != 0.0:
+            for i in range(nq):
+                out[nq + i] += stop_acc[i, k] * df
 
 
 @njit(cache=True)
-def jacobian(x: np.ndarray, v: float, s: SystemArrays) -> np.ndarray:
-    """Jacobian d(rhs)/dx at ``t = 0`` by central differences of :func:`rhs`.
+def jacobian(x: np.ndarray, v: float, s: SystemArrays, t: float) -> np.ndarray:
+    """Jacobian d(rhs)/dx at time ``t`` by central differences of :func:`rhs`.
 
     Steps are 1e-7 in displacements, angles and rates and 1e-3 N in damper forces (the
     states' natural scales times about 1e-5).
@@ -188,9 +269,9 @@ def jacobian(x: np.ndarray, v: float, s: SystemArrays) -> np.ndarray:
     for k in range(n):
         h = 1e-3 if k >= fz else 1e-7
         xp[k] = x[k] + h
-        rhs(0.0, xp, v, s, fp)
+        rhs(t, xp, v, s, fp)
         xp[k] = x[k] - h
-        rhs(0.0, xp, v, s, fm)
+        rhs(t, xp, v, s, fm)
         xp[k] = x[k]
         for i in range(n):
             jac[i, k] = (fp[i] - fm[i]) / (2.0 * h)
@@ -200,23 +281,30 @@ def jacobian(x: np.ndarray, v: float, s: SystemArrays) -> np.ndarray:
 @njit(cache=True)
 def derived(t: np.ndarray, x: np.ndarray, v: float, s: SystemArrays,
             acc_index: np.ndarray) -> np.ndarray:  # fmt: skip
-    """Guiding forces and accelerations along a run (see :mod:`railhunt.channels`).
+    """Wheel/rail forces and accelerations along a run (see :mod:`railhunt.channels`).
 
-    Returns an array with one row per time: ``-F_y`` of each wheelset (the sum of its
-    guiding forces on the track, N), then ``d(rate)/dt`` of each coordinate in
-    ``acc_index`` (m/s^2 or rad/s^2).
+    Returns an array with one row per time and, for ``n`` wheelsets, the columns: ``ΣY``
+    of each wheelset (``-F_y``: the lateral force it puts on the track, N, + left); the
+    guiding force ``Y`` of each left wheel, then of each right wheel (the force of the
+    wheel on its rail, N, positive outward from the track centre); the wheel loads ``Q``
+    of the left wheels, then of the right wheels (N); then ``d(rate)/dt`` of each
+    coordinate in ``acc_index`` (m/s^2 or rad/s^2).
     """
     nq = s.linear.shape[0]
     nw = s.wheelsets.shape[0]
     n = t.shape[0]
-    res = np.empty((n, nw + acc_index.shape[0]))
+    res = np.empty((n, 5 * nw + acc_index.shape[0]))
     out = np.empty(x.shape[1])
     for i in range(n):
         xi = x[i]
         rhs(t[i], xi, v, s, out)
         for j in range(nw):
-            fy, _ = wheelset_track_forces(j, t[i], xi, v, s)
+            fy, _, f_l, f_r, q_l, q_r = wheelset_track_forces(j, t[i], xi, v, s)
             res[i, j] = -fy
+            res[i, nw + j] = -f_l
+            res[i, 2 * nw + j] = f_r
+            res[i, 3 * nw + j] = q_l
+            res[i, 4 * nw + j] = q_r
         for k in range(acc_index.shape[0]):
-            res[i, nw + k] = out[nq + acc_index[k]]
+            res[i, 5 * nw + k] = out[nq + acc_index[k]]
     return res

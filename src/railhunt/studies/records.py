@@ -99,6 +99,9 @@ class Step:
         ``"ok"``, ``"not available"`` (a part railhunt does not have yet) or ``"failed"``.
     message : str
         Why the step is not available or failed ("" when ok).
+    table : list of dict
+        A table of railhunt's own results (column heading -> cell text, one dict per row)
+        for a step beyond the paper, which has no headline rows; empty for the others.
     """
 
     name: str
@@ -111,6 +114,7 @@ class Step:
     seconds: float = 0.0
     status: str = "ok"
     message: str = ""
+    table: list[dict[str, Any]] = field(default_factory=list)
 
 
 @dataclass
@@ -177,7 +181,8 @@ class Report:
             "headline": rows,
             "steps": [{"name": s.name, "title": s.title, "status": s.status,
                        "message": s.message, "seconds": round(s.seconds, 2),
-                       "figures": [p.name for p in s.figures]} for s in self.steps],
+                       "figures": [p.name for p in s.figures],
+                       **({"table": s.table} if s.table else {})} for s in self.steps],
         }  # fmt: skip
 
 
@@ -202,6 +207,12 @@ class Settings:
     sweep_points_per_section : int
         Points per Table 1 section of the Figs. 10–12 sweep, both ends included (each
         parameter line has ``3 * (n - 1) + 1`` points).
+    map_radii : tuple of float
+        Curve radii of the stability map beyond the paper (m; ``inf`` for straight track).
+    map_cant : float
+        Cant of those curves (m).
+    map_nonlinear : bool
+        Also the nonlinear critical speed of each radius (not only the linear one).
     """
 
     fig6_duration: float = 20.0
@@ -211,12 +222,17 @@ class Settings:
     initial_amplitude: float = 3e-3
     family_kn: tuple[float, ...] = (1.0, 2.0, 3.0, 5.0, 8.0, math.inf)
     sweep_points_per_section: int = 6
+    map_radii: tuple[float, ...] = (2000.0, 4000.0, 8000.0, math.inf)
+    map_cant: float = 0.15
+    map_nonlinear: bool = True
 
     @classmethod
     def quick(cls) -> Settings:
-        """Coarser settings for a run of under a minute (fewer speeds, a smaller family)."""
+        """Coarser settings for a run of under a minute (fewer speeds, a smaller family, the
+        stability map without the nonlinear search)."""
         return cls(frequency_speeds_kmh=(300.0, 450.0, 10.0), jump_tol_kmh=2.5,
-                   family_kn=(1.0, 3.0, math.inf), sweep_points_per_section=2)  # fmt: skip
+                   family_kn=(1.0, 3.0, math.inf), sweep_points_per_section=2,
+                   map_nonlinear=False)  # fmt: skip
 
 
 @dataclass

@@ -19,7 +19,7 @@ from railhunt.paper2019 import citation
 if TYPE_CHECKING:
     from railhunt.studies.records import Headline, Report, Step
 
-__all__ = ["PAPER", "build_html", "data_uri", "headline_table", "write_html"]
+__all__ = ["PAPER", "build_html", "data_uri", "headline_table", "results_table", "write_html"]
 
 #: The paper the report reproduces (as cited in docs/model.md; railhunt.paper2019.CITATION).
 PAPER = citation()
@@ -99,6 +99,19 @@ def headline_table(rows: list[Headline]) -> str:
     return "\n".join(out)
 
 
+def results_table(rows: list[dict[str, object]]) -> str:
+    """HTML table of a step's own results: the columns of the first row, one row each."""
+    heads = list(rows[0])
+    out = ['<table class="results">',
+           "<tr>" + "".join(f"<th>{_e(h)}</th>" for h in heads) + "</tr>"]
+    for row in rows:
+        cells = "".join(f'<td class="{"note" if h == "note" else "num"}">{_e(row.get(h, ""))}'
+                        "</td>" for h in heads)  # fmt: skip
+        out.append(f"<tr>{cells}</tr>")
+    out.append("</table>")
+    return "\n".join(out)
+
+
 def _status(step: Step) -> str:
     css = {"ok": "ok", "failed": "failed"}.get(step.status, "na")
     return f'<span class="status {css}">{_e(step.status)}</span>'
@@ -113,6 +126,8 @@ def _step_html(step: Step) -> str:
         parts.append(f'<figure><img src="{data_uri(path)}" alt="{_e(step.title)}: '
                      f'{_e(Path(path).name)}"><figcaption>{_e(Path(path).name)}'
                      "</figcaption></figure>")  # fmt: skip
+    if step.table:
+        parts.append(results_table(step.table))
     if step.shows:
         parts.append(f"<p><b>What railhunt shows:</b> {_e(step.shows)}</p>")
     if step.how:

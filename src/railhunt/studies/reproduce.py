@@ -1,16 +1,19 @@
-"""Recompute the paper's results figures (Figs. 6, 7, 8, 10–13) and compare its numbers.
+"""Recompute the paper's results figures (Figs. 6, 7, 8, 10–13) and compare its numbers;
+go beyond the paper with the stability map of its vehicle in curves.
 
 :func:`reproduce` runs one independent step per figure for the default vehicle
-(``paper2019``), writes each figure as ``DIR/figN.png``, a machine-readable
+(``paper2019``), writes each figure as ``DIR/figN.png`` (and ``DIR/stability_map.png``
+beyond the paper), a machine-readable
 ``DIR/headline.json`` and a self-contained ``DIR/report.html``
 (:mod:`railhunt.studies.report`), and returns a :class:`Report`. Every step returns its
 figure files, its rows of the headline table (the paper's number beside railhunt's, with
 the difference) and its run time; a step that raises is recorded as failed and the others
 still run.
 
-The steps live by theme in ``reproduce_fig6_8``, ``reproduce_fig10_12`` and
-``reproduce_fig13``; the records they return (:class:`Headline`, :class:`Step`,
-:class:`Report`) in :mod:`railhunt.studies.records`; the paper's captions, sentences and
+The steps live by theme in ``reproduce_fig6_8``, ``reproduce_fig10_12``,
+``reproduce_fig13`` and (beyond the paper, railhunt's own results) ``reproduce_curves``;
+the records they return (:class:`Headline`, :class:`Step`, :class:`Report`) in
+:mod:`railhunt.studies.records`; the paper's captions, sentences and
 numbers in :mod:`railhunt.paper2019`. Where railhunt differs from the paper the table says
 so; the reasons are documented in ``docs/bifurcation.md`` and ``docs/model.md`` and
 summarised in ``docs/reproduce.md``.
@@ -29,6 +32,7 @@ from typing import Any
 from railhunt import paper2019
 from railhunt.paper2019 import NO_BLOWOFF as NO_BLOWOFF
 from railhunt.studies.records import Context, Headline, Report, Settings, Step, show
+from railhunt.studies.reproduce_curves import curves
 from railhunt.studies.reproduce_fig6_8 import fig6, fig7, fig8, peak_period
 from railhunt.studies.reproduce_fig10_12 import FIG10_LINES as FIG10_LINES
 from railhunt.studies.reproduce_fig10_12 import FIG11_LINES as FIG11_LINES
@@ -48,9 +52,9 @@ _fig13 = fig13
 # --------------------------------------------------------------------------- driver
 
 #: The steps, in report order.
-STEPS: tuple[Callable[[Context], Step], ...] = (fig6, fig7, fig8, fig10_12, fig13)
+STEPS: tuple[Callable[[Context], Step], ...] = (fig6, fig7, fig8, fig10_12, fig13, curves)
 _TITLES = {"fig6": "Fig. 6", "fig7": "Fig. 7", "fig8": "Fig. 8", "fig10_12": "Figs. 10–12",
-           "fig13": "Fig. 13"}  # fmt: skip
+           "fig13": "Fig. 13", "curves": "Beyond the paper: curves"}  # fmt: skip
 
 
 def reproduce(
@@ -61,18 +65,20 @@ def reproduce(
     vehicle: Vehicle | None = None,
     settings: Settings | None = None,
 ) -> Report:
-    """Recompute the paper's Figs. 6, 7, 8, 10–13 and write a self-contained HTML report.
+    """Recompute the paper's Figs. 6, 7, 8, 10–13 and write a self-contained HTML report;
+    beyond the paper, the stability map of the vehicle in curves.
 
     Parameters
     ----------
     out_dir : str or pathlib.Path
         Output folder (created if missing): ``report.html``, ``headline.json``, ``figN.png``
-        (``fig7a.png``, ``fig7b.png`` for Fig. 7) and, with the sweep, ``sweep.csv``.
+        (``fig7a.png``, ``fig7b.png`` for Fig. 7), with the sweep ``sweep.csv``, and
+        ``stability_map.png`` and ``stability_map.csv``.
     quick : bool
         Coarser settings (:meth:`Settings.quick`): a run of under a minute.
     client : dask.distributed.Client, optional
-        Runs the Fig. 13 family members (and the sweep) as Dask tasks; otherwise everything
-        runs in this process.
+        Runs the Fig. 13 family members (and the sweep and the stability map) as Dask tasks;
+        otherwise everything runs in this process.
     progress : callable, optional
         Called as ``progress(title, state)`` with ``state`` ``"start"`` when a step starts
         and its status (``"ok"``, ``"not available"``, ``"failed"``) when it ends.

@@ -33,7 +33,8 @@ from railhunt.track import SingleDefect
 from railhunt.vehicle import Vehicle
 
 
-def _critical_speed_message(result: Any) -> str:
+def critical_speed_message(result: Any) -> str:
+    """Why a critical-speed search found no change of verdict, in words."""
     verdicts = {t.verdict for t in result.trials}
     speeds = [t.speed_kmh for t in result.trials]
     if verdicts == {"stable"}:
@@ -101,7 +102,7 @@ def evaluate_point(
             res = critical_speed(v, excitation, creep_law=creep_law)
             row["critical_speed_kmh"] = float(res.speed_kmh)
             if not res.bracketed:
-                status, message = STATUS_NO_CRITICAL_SPEED, _critical_speed_message(res)
+                status, message = STATUS_NO_CRITICAL_SPEED, critical_speed_message(res)
         if "linear_critical_speed" in outputs:
             lin = linear_critical_speed(v, creep_law=creep_law)
             row["linear_critical_speed_kmh"] = float(lin.speed_kmh)
@@ -117,14 +118,14 @@ def evaluate_point(
             row["hunting_frequency_hz"] = float(hf.frequency_hz)
             row["frequency_source"] = hf.source
     except Exception as exc:  # noqa: BLE001 - one bad point must not end a study
-        if _interrupted(exc):
+        if interrupted(exc):
             raise KeyboardInterrupt from exc
         status, message = STATUS_FAILED, f"{type(exc).__name__}: {exc}"
     row["status"], row["message"] = status, message
     return row
 
 
-def _interrupted(exc: BaseException) -> bool:
+def interrupted(exc: BaseException) -> bool:
     """Whether ``exc`` stands for a Ctrl-C.
 
     A SIGINT that arrives inside compiled (numba) code surfaces as ``SystemError: ...

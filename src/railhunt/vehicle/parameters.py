@@ -136,6 +136,15 @@ class VehicleFields:
                             "Lateral damping of secondary suspension, per damper (two per bogie)")
     C_sz: float = parameter("N*s/m", NONNEGATIVE,
                             "Vertical damping of secondary suspension, per damper (two per bogie)")
+    y_bs: float = parameter("m", NONNEGATIVE,
+                            "Free play of the secondary lateral bump stop (car body to bogie, "
+                            "one per bogie)", default=0.030)
+    K_bs: float = parameter("N/m", NONNEGATIVE,
+                            "Stiffness of the secondary lateral bump stop once in contact "
+                            "(0 with K_bs3 = 0: no bump stop)", default=1.0e6)
+    K_bs3: float = parameter("N/m^3", NONNEGATIVE,
+                             "Cubic (progressive) stiffness of the secondary lateral bump stop",
+                             default=5.0e9)
     K_d: float = parameter("N/m", POSITIVE, "Series stiffness of yaw damper (Maxwell spring)")
     C_d1: float = parameter("N*s/m", POSITIVE, "First stage damping of yaw damper (below blow-off)")
     C_d2: float = parameter("N*s/m", POSITIVE,

@@ -9,8 +9,13 @@ from pathlib import Path
 import click
 
 from railhunt.cli.options import (
+    CURVE_RULES,
+    build_curve,
     build_vehicle,
     check_outputs,
+    curve_json,
+    curve_options,
+    describe_curve,
     file_option,
     initial_amplitude_option,
     kmh_option,
@@ -24,6 +29,7 @@ RULES = (
     Ordered("--from", "--to", "--to {to_kmh:g} km/h must be above --from {from_kmh:g} km/h",
             strict=True),
     Requires("--family-png", "--fu-family", "{a} needs {b}"),
+    *CURVE_RULES,
 )  # fmt: skip
 
 
@@ -64,11 +70,15 @@ def _parse_forces(ctx: click.Context, param: click.Parameter,
               "paper's Fig. 13.")
 @file_option("--family-png", "family_png", "Draw the --fu-family diagrams side by side "
              "(Fig. 13).")
+@curve_options("Length of the transition curves of --curve-radius (m), recorded in the JSON; "
+               "the limit cycles are those of the constant curve and do not depend on it "
+               "[default: R/10, within 20-300 m].")
 @vehicle_options
 def bifurcation_command(from_kmh: float, to_kmh: float, initial_mm: float, as_json: bool,
                         png_file: Path | None, fu_family: list[float] | None,
-                        family_png: Path | None, vehicle_file: Path | None,
-                        sets: dict[str, float]) -> None:  # fmt: skip
+                        family_png: Path | None, curve_radius: float | None,
+                        cant_mm: float | None, transition: float | None, direction: str,
+                        vehicle_file: Path | None, sets: dict[str, float]) -> None:  # fmt: skip
     """Limit cycles of the vehicle on ideal track versus speed.
 
     \b
@@ -80,18 +90,27 @@ def bifurcation_command(from_kmh: float, to_kmh: float, initial_mm: float, as_js
     speed with a limit cycle (nonlinear critical speed), the folds and the
     bifurcation type (subcritical, supercritical-a, supercritical-b as in
     the paper's Fig. 5).
+
+    \b
+    In a curve (--curve-radius, --cant, --direction) the limit cycles are
+    those about the steady-curving equilibrium in the constant curve, shot
+    over the whole period (a curve has no mirror symmetry); amplitudes are
+    half the peak-to-peak swing of the leading wheelset.
     """
     check_outputs(png=png_file, **{"family-png": family_png})
     vehicle = build_vehicle(vehicle_file, sets)
+    curve = build_curve(curve_radius, cant_mm, transition, direction)
+    in_curve = {} if curve is None else {"curve": curve}
     from railhunt import bifurcation_diagram
     from railhunt.analysis.continuation import bifurcation_family
 
     with spinner("following limit cycles"):
-        diagram = bifurcation_diagram(vehicle, (from_kmh, to_kmh))
+        diagram = bifurcation_diagram(vehicle, (from_kmh, to_kmh), **in_curve)
     family = []
     if fu_family:
         with spinner("following limit cycles of the F_u family"):
-            family = bifurcation_family(vehicle, fu_family, "F_u", (from_kmh, to_kmh))
+            family = bifurcation_family(vehicle, fu_family, "F_u", (from_kmh, to_kmh),
+                                        **in_curve)  # fmt: skip
     if png_file is not None:
         from railhunt.plots import plot_bifurcation
 
@@ -106,12 +125,17 @@ def bifurcation_command(from_kmh: float, to_kmh: float, initial_mm: float, as_js
     if as_json:
         data = diagram.to_dict(point_p_amplitude=initial_mm * 1e-3)
         data["vehicle"] = vehicle.name
+        if curve is not None:
+            data["curve"] = curve_json(curve)
         if family:
             data["fu_family"] = summary
         click.echo(json.dumps(json_safe(data), indent=2))
         return
     out = stdout_console()
     out.print(f"vehicle: {vehicle.name}")
+    if curve is not None:
+        out.print(f"curve: {describe_curve(curve, transition=False)} (limit cycles about the "
+                  "steady-curving equilibrium)")  # fmt: skip
     out.print(f"Hopf point (linear critical speed): {fmt(diagram.hopf_speed_kmh, '.1f', 'km/h')}"
               f" at {fmt(diagram.hopf_frequency_hz, '.2f', 'Hz')}"
               f" (from the orbits: {fmt(diagram.hopf_speed_from_orbits_kmh, '.1f', 'km/h')})")

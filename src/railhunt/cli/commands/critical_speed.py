@@ -15,8 +15,13 @@ import click
 
 from railhunt.cli.errors import user_input
 from railhunt.cli.options import (
+    CURVE_RULES,
+    build_curve,
     build_vehicle,
+    curve_json,
+    curve_options,
     defect_options,
+    describe_curve,
     kmh_option,
     method_options,
     number_range,
@@ -43,6 +48,10 @@ RULES = (
              "{a} cannot be combined with {b}: the measured track replaces the random one"),
     Ordered("--tol", "--step",
             "--tol {tol_kmh:g} km/h is invalid: must be <= --step {step_kmh:g} km/h"),
+    Excludes("--curve-radius", "--method=stochastic",
+             "{a} cannot be combined with --method stochastic (which runs on straight "
+             "irregular track)"),
+    *CURVE_RULES,
 )  # fmt: skip
 
 
@@ -74,6 +83,9 @@ RULES = (
     callback=number_range("m", 200.0, 1e5, low_open=False),
     help="With --method stochastic: length of the irregular track run over at each speed (m).",
 )
+@curve_options("Length of the transition curves of --curve-radius (m), recorded in the "
+               "JSON; the critical speeds are found in the constant curve and do not depend "
+               "on it [default: R/10, within 20-300 m].")
 @click.option(
     "--json",
     "as_json",
@@ -93,6 +105,10 @@ def critical_speed_command(
     seed: int,
     track_length: float,
     irregularity_file: Path | None,
+    curve_radius: float | None,
+    cant_mm: float | None,
+    transition: float | None,
+    direction: str,
     as_json: bool,
     vehicle_file: Path | None,
     sets: dict[str, float],
@@ -122,6 +138,14 @@ def critical_speed_command(
     style) compares the 100 m sliding rms of the sum of guiding forces and of
     the bogie frame lateral acceleration, band-passed f0 +/- 2 Hz, with their
     limits. The result is the lowest speed that breaks the criterion (km/h).
+
+    \b
+    In a curve (--curve-radius, --cant, --direction; not with --method
+    stochastic) both are found in the constant part of the curve: each trial
+    starts on the steady-curving equilibrium, the defect lies inside the
+    curve, and the motion is judged by its distance from that equilibrium;
+    the linear critical speed is where that equilibrium, followed along the
+    speed, loses stability.
     """
     vehicle = build_vehicle(vehicle_file, sets)
     if method == "stochastic":
@@ -137,6 +161,7 @@ def critical_speed_command(
     from railhunt import critical_speed, linear_critical_speed
 
     excitation = single_defect(amplitude, wavelength)
+    curve = build_curve(curve_radius, cant_mm, transition, direction)
 
     with trial_progress("critical speed") as on_trial, user_input():
         result = critical_speed(
@@ -148,23 +173,24 @@ def critical_speed_command(
             method=method,
             dt=dt,
             progress=on_trial,
+            curve=curve,
         )
         on_trial(None)
-        linear = linear_critical_speed(vehicle)
+        linear = linear_critical_speed(vehicle, curve=curve)
 
     if as_json:
-        click.echo(
-            json.dumps(
-                _critical_json(vehicle, excitation, tol_kmh, result, linear), allow_nan=False
-            )
-        )
+        data = _critical_json(vehicle, excitation, tol_kmh, result, linear)
+        if curve is not None:
+            data["curve"] = curve_json(curve)
+        click.echo(json.dumps(data, allow_nan=False))
         return
 
     from rich.table import Table
 
+    where = "" if curve is None else f" in a curve, {describe_curve(curve, transition=False)}"
     table = Table(
         title=f"critical speed trials of {vehicle.name} "
-        f"({amplitude:g} mm x {wavelength:g} m defect, {method})"
+        f"({amplitude:g} mm x {wavelength:g} m defect, {method}){where}"
     )
     for head in (
         "#",
@@ -191,7 +217,7 @@ def critical_speed_command(
     console = stdout_console()
     console.print(table)
     console.print(_nonlinear_line(result, tol_kmh))
-    console.print(linear_critical_speed_line(linear))
+    console.print(linear_critical_speed_line(linear, curved=curve is not None))
 
 
 def _nonlinear_line(result: Any, tol_kmh: float) -> str:

@@ -83,7 +83,7 @@ def _difference_style(agrees: bool | None) -> str:
               "missing; files of an earlier run are overwritten).")  # fmt: skip
 @click.option("--quick", is_flag=True,
               help="Coarser and faster (under a minute): fewer speeds, a smaller F_u family, "
-              "fewer sweep points.")  # fmt: skip
+              "fewer sweep points, the stability map without the nonlinear search.")  # fmt: skip
 @click.option("--scheduler", metavar="ADDRESS",
               help="Run the parallel parts on this Dask scheduler (e.g. tcp://host:8786) "
               "instead of a local cluster.")  # fmt: skip
@@ -101,6 +101,12 @@ def reproduce_command(out_dir: Path, quick: bool, scheduler: str | None,
     railhunt shows and how it was computed, and the run times. Also writes
     DIR/headline.json (machine readable) and DIR/fig6.png ... fig13.png.
     The full run takes a few minutes on two cores, --quick under one.
+
+    \b
+    Beyond the paper (which computes on straight track only), a last section
+    maps the linear and nonlinear critical speed of the vehicle in curves of
+    2000, 4000 and 8000 m with 150 mm cant and on straight track
+    (DIR/stability_map.png and .csv); --quick leaves out the nonlinear one.
     """
     if out_dir.exists() and not out_dir.is_dir():
         raise CliError(f"--out {out_dir}: exists and is not a folder")

@@ -9,8 +9,12 @@ import click
 
 from railhunt.cli.errors import user_input
 from railhunt.cli.options import (
+    CURVE_LEAD_IN,
+    CURVE_RULES,
+    build_curve,
     build_vehicle,
     check_outputs,
+    curve_options,
     defect_options,
     file_option,
     measured_track,
@@ -34,6 +38,7 @@ RULES = (
              ("--amplitude", "--wavelength", "--initial-displacement"),
              "{a} cannot be combined with {b}: choose one excitation"),
     Requires("--seed", "--spectrum", "{a} only applies with {b}"),
+    *CURVE_RULES,
 )  # fmt: skip
 
 
@@ -73,6 +78,8 @@ RULES = (
     "With --spectrum:",
     "Instead of a track defect, run over this measured alignment",
 )
+@curve_options("Length of each transition curve of --curve-radius (m) [default: R/10, "
+               "within 20-300 m].")
 @method_options
 @click.option(
     "--output-dt",
@@ -84,7 +91,8 @@ RULES = (
 )
 @file_option("--csv", "csv_file", "Write all channels (SI units, header with units).")
 @file_option("--png", "png_file", "Plot the leading wheelset: lateral displacement (mm) vs "
-             "time and its phase plane after 3 s.")  # fmt: skip
+             "time and its phase plane after 3 s (with --curve-radius: the curve entry, "
+             "wheelsets, yaw damper forces and Y/Q against distance).")  # fmt: skip
 @vehicle_options
 def simulate_command(
     speed: float,
@@ -95,6 +103,10 @@ def simulate_command(
     spectrum: str | None,
     seed: int,
     irregularity_file: Path | None,
+    curve_radius: float | None,
+    cant_mm: float | None,
+    transition: float | None,
+    direction: str,
     method: str,
     dt: float | None,
     output_dt: float | None,
@@ -119,6 +131,12 @@ def simulate_command(
     in turn, and prints the acceptance-test instability criterion (100 m
     sliding rms of the sum of guiding forces and of the bogie frame lateral
     acceleration, band-passed f0 +/- 2 Hz, against their limits).
+
+    \b
+    With --curve-radius M the track turns into a curve (--cant, --transition,
+    --direction) after the excitation: its entry transition begins 20 m after
+    the single defect (or 20 m ahead with the other excitations), and
+    displacements are measured from the track at each body's position.
 
     Prints the run's status and the leading wheelset's peak and final
     lateral amplitude (mm); --csv and --png save the details.
@@ -152,6 +170,9 @@ def simulate_command(
     else:
         excitation = single_defect(amplitude, wavelength)
         described = f"{amplitude:g} mm x {wavelength:g} m lateral bump at {excitation.start:g} m"
+    lead_in = CURVE_LEAD_IN + (excitation.start + excitation.wavelength
+                               if initial_displacement is None and not irregular else 0.0)
+    curve = build_curve(curve_radius, cant_mm, transition, direction, start=lead_in)
     with spinner(f"simulating {duration:g} s at {speed:g} km/h ..."), user_input():
         result = simulate(
             vehicle,
@@ -161,6 +182,7 @@ def simulate_command(
             method=method,
             dt=dt,
             output_dt=output_dt,
+            curve=curve,
         )
 
     t = result.t
@@ -174,6 +196,10 @@ def simulate_command(
     click.echo(f"excitation: {described}")
     click.echo(f"status:     {result.status} ({result.message})")
     click.echo(f"y_w1:       peak {y.max():.3f} mm, final amplitude {final:.3f} mm ({note})")
+    if curve is not None:
+        from railhunt.cli.commands.curve import print_run_in_curve
+
+        print_run_in_curve(result, vehicle, curve)
     if irregular:
         _print_criterion(result, vehicle)
     if csv_file is not None:
@@ -181,10 +207,13 @@ def simulate_command(
             result.to_csv(csv_file)
         click.echo(f"csv:        {csv_file} ({t.size} rows, {len(result.channel_names)} channels)")
     if png_file is not None:
-        from railhunt.plots import plot_time_history
+        from railhunt.plots import plot_curve_entry, plot_time_history
 
         with spinner("plotting ..."), user_input("cannot write --png: "):
-            plot_time_history(result, png_file)
+            if curve is None:
+                plot_time_history(result, png_file)
+            else:
+                plot_curve_entry(result, vehicle, png_file, curve=curve)
         click.echo(f"png:        {png_file}")
 
 

@@ -12,6 +12,13 @@ from railhunt.cli.errors import CliError, user_input
 from railhunt.cli.options import build_vehicle, check_outputs, number_range, vehicle_options
 from railhunt.cli.output import fmt, json_safe, show_progress, stdout_console
 from railhunt.cli.rules import Excludes, Requires, command
+from railhunt.cli.study import (
+    STUDY_RULES,
+    check_workers_option,
+    report_lost,
+    running_study,
+    study_options,
+)
 
 _SWEEP_HELP = """\
 Critical speeds and hunting frequency over a range of vehicle parameters.
@@ -54,9 +61,7 @@ Examples:
 MAX_POINTS = 1_000_000
 
 RULES = (
-    Excludes("--resume", "--overwrite", "{a} and {b} exclude each other"),
-    Excludes("--scheduler", "--workers",
-             "--workers sets the local cluster; a --scheduler cluster has its own"),
+    *STUDY_RULES,
     Requires("--samples", "--design=random|lhs",
              "--samples is for the random and lhs designs, not {design!r}"),
     Excludes("--table1", ("--from", "--to", "--num", "--design!=lines", "--spacing!=linear"),
@@ -163,14 +168,7 @@ def _ranges(names, froms, tos, nums, spacing, design):
               callback=number_range("mm", 0.0, 20.0, optional=True),
               help="Release every wheelset from MM for the frequency run [default: run over "
                    "the critical-speed defect, as the paper's Sec. 3.3 defines it].")
-@click.option("--out", "out", type=click.Path(dir_okay=False, path_type=Path), required=True,
-              metavar="FILE", help="Results file (.csv, or .parquet with pyarrow).")
-@click.option("--resume", is_flag=True, help="Continue FILE: compute only its missing points.")
-@click.option("--overwrite", is_flag=True, help="Replace FILE if it exists.")
-@click.option("--workers", type=int, metavar="N",
-              help="Worker processes on this machine [default: all cores; 1: no Dask].")
-@click.option("--scheduler", metavar="ADDRESS",
-              help="Run on the Dask cluster of this scheduler (e.g. tcp://10.0.0.5:8786).")
+@study_options()
 @click.option("--json", "as_json", is_flag=True, help="Print a JSON summary instead of a table.")
 @vehicle_options
 def sweep_command(names, table1, per_section, froms, tos, nums, spacing, design, samples, seed,
@@ -178,10 +176,9 @@ def sweep_command(names, table1, per_section, froms, tos, nums, spacing, design,
                   scheduler, as_json, vehicle_file, sets) -> None:  # fmt: skip
     """``railhunt sweep`` (help text: ``_SWEEP_HELP``)."""
     from railhunt import sweep
-    from railhunt.studies.store import OUTPUTS, ResultFileError
+    from railhunt.studies.store import OUTPUTS
 
-    if workers is not None and not 1 <= workers <= 1024:
-        raise CliError(f"--workers {workers} is invalid: must be in [1, 1024]")
+    check_workers_option(workers)
     chosen = tuple(dict.fromkeys(o.strip() for o in outputs.split(",") if o.strip()))
     bad = [o for o in chosen if o not in OUTPUTS]
     if bad or not chosen:
@@ -204,23 +201,13 @@ def sweep_command(names, table1, per_section, froms, tos, nums, spacing, design,
                 raise CliError(f"--design grid gives {size} points: at most {MAX_POINTS} "
                                "(use --design lhs --samples N for large spaces)")  # fmt: skip
     progress = show_progress()
-    try:
-        with user_input():
-            result = sweep(vehicle, parameters, chosen, design=design, samples=samples,
-                           seed=seed, ties=ties, frequency_speed_kmh=frequency_kmh,
-                           frequency_amplitude=None if amplitude_mm is None
-                           else amplitude_mm * 1e-3, out=out,
-                           resume=resume, overwrite=overwrite, scheduler=scheduler,
-                           workers=workers, progress=progress)  # fmt: skip
-    except ResultFileError as exc:
-        raise CliError(str(exc)) from None
-    except KeyboardInterrupt:
-        from railhunt import read_results
-
-        done = len(read_results(out)) if out.exists() else 0
-        click.echo(f"railhunt: interrupted: {done} points are in {out}; run the same command "
-                   "with --resume to finish", err=True)  # fmt: skip
-        raise SystemExit(130) from None
+    with running_study(out):
+        result = sweep(vehicle, parameters, chosen, design=design, samples=samples,
+                       seed=seed, ties=ties, frequency_speed_kmh=frequency_kmh,
+                       frequency_amplitude=None if amplitude_mm is None
+                       else amplitude_mm * 1e-3, out=out,
+                       resume=resume, overwrite=overwrite, scheduler=scheduler,
+                       workers=workers, progress=progress)  # fmt: skip
     if as_json:
         click.echo(json.dumps(json_safe({
             "file": str(out), "points": result.meta["points"], "computed": result.computed,
@@ -228,10 +215,7 @@ def sweep_command(names, table1, per_section, froms, tos, nums, spacing, design,
             "rows": result.rows}), indent=1))  # fmt: skip
     else:
         _print_summary(result, out)
-    if result.lost:
-        click.echo(f"railhunt: {result.lost} points were lost ({result.lost_reasons[0]}); run "
-                   "the same command with --resume to compute them", err=True)  # fmt: skip
-        raise SystemExit(1)
+    report_lost(result)
 
 
 def _print_summary(result, out: Path) -> None:

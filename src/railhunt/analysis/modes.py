@@ -1,0 +1,56 @@
+"""Modes of the linearised vehicle: eigenpairs and which of them is the hunting mode.
+
+The *hunting mode* is the least-damped oscillatory mode whose largest lateral
+displacement (yaw angles scaled by the half gauge) is a wheelset's; modes are followed
+from speed to speed by the modal assurance criterion of their shapes.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from railhunt.kernel.layout import BODY_Y, N_DOF, WHEELSET_PSI, WHEELSET_Y
+from railhunt.model import Model
+
+
+def sorted_eig(jac: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Eigenvalues and eigenvectors of ``jac``, sorted by decreasing real part."""
+    w, vecs = np.linalg.eig(jac)
+    order = np.argsort(-w.real)
+    return w[order], vecs[:, order]
+
+
+def eigenvalues(model: Model, speed: float) -> tuple[np.ndarray, np.ndarray]:
+    """Eigenvalues and eigenvectors of the Jacobian at the centred state (speed in m/s)."""
+    return sorted_eig(model.jacobian(speed))
+
+
+def hunting_mode_index(w: np.ndarray, vecs: np.ndarray, a: float) -> int:
+    """Index of the hunting mode among eigenpairs ``(w, vecs)``.
+
+    Among the oscillatory modes (Im > 0) whose largest lateral displacement amplitude
+    (yaw angles scaled by the half gauge ``a``) belongs to a wheelset, the least damped
+    (largest real part). Falls back to the least-damped oscillatory mode.
+    """
+    best, best_any = -1, -1
+    for k in range(w.size):
+        if w[k].imag <= 1e-6:
+            continue
+        if best_any < 0 or w[k].real > w[best_any].real:
+            best_any = k
+        if _is_wheelset_mode(vecs[:N_DOF, k], a) and (best < 0 or w[k].real > w[best].real):
+            best = k
+    return best if best >= 0 else best_any
+
+
+def _is_wheelset_mode(q: np.ndarray, a: float) -> bool:
+    """True when the largest lateral amplitude of mode shape ``q`` (coordinates) is a wheelset's."""
+    lateral = np.abs(q[BODY_Y])
+    wheel = np.concatenate([np.abs(q[WHEELSET_Y]), a * np.abs(q[WHEELSET_PSI])])
+    return bool(wheel.max() >= lateral.max())
+
+
+def mac(p: np.ndarray, q: np.ndarray) -> float:
+    """Modal assurance criterion of two complex mode shapes (0..1)."""
+    den = np.vdot(p, p).real * np.vdot(q, q).real
+    return float(abs(np.vdot(p, q)) ** 2 / den) if den > 0 else 0.0
