@@ -52,7 +52,7 @@ table[["speed_kmh", "frequency_hz", "source", "amplitude", "eigen_frequency_hz"]
 # %%
 jump = frequency_jump(table["speed_kmh"].to_numpy(), table["frequency_hz"].to_numpy(),
                       list(table["source"]))
-print("jump at %.0f km/h: %.2f -> %.2f Hz" % jump)
+print("jump at {:.0f} km/h: {:.2f} -> {:.2f} Hz".format(*jump))
 assert jump[0] == 365.0 and abs(jump[1] - 3.56) < 0.02 and abs(jump[2] - 5.08) < 0.02
 
 # %% [markdown]

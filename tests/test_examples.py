@@ -66,3 +66,9 @@ def test_example_runs_as_a_notebook(path: Path) -> None:
     assert any("text/html" in o.get("data", {}) for o in shown), (
         "the notebook shows no HTML table (a result's or a DataFrame's)")
     assert _files_in(EXAMPLES_DIR) == before, "the example wrote into examples/"
+
+
+def test_the_examples_readme_lists_every_example() -> None:
+    readme = (EXAMPLES_DIR / "README.md").read_text(encoding="utf-8")
+    for path in EXAMPLES:
+        assert f"]({path.name})" in readme, f"examples/README.md does not link {path.name}"
