@@ -4,8 +4,9 @@ Each ``examples/NN_name.py`` is a Jupyter notebook in jupytext's percent format.
 converted (jupytext) and executed cell by cell in a fresh Jupyter kernel (nbclient), with
 the examples folder as the working directory, as ``jupyter lab`` would. Every number an
 example's text quotes is asserted in its own cells, so an example whose results drift
-fails here. Measured on this 2-core machine: 01 10 s, 02 17 s, 03 25 s, 04 5 s, 05 39 s
-(Dask start-up and numba warm-up), 06 10 s, 07 8 s; about 2 minutes in all.
+fails here. Measured on this 2-core machine (shared with other jobs; two runs): 01 5-10 s,
+02 8-17 s, 03 14-25 s, 04 4-5 s, 05 29-39 s (Dask start-up and numba warm-up), 06 7-10 s,
+07 6-8 s; 73-114 s in all.
 """
 
 from __future__ import annotations

@@ -142,10 +142,6 @@ class ResultDisplay:
             f"</tr></thead><tbody>{''.join(cells)}</tbody></table>"
         )
 
-    def units(self) -> dict[str, str]:
-        """Unit of each column of :meth:`to_dataframe` (``""``: text, ``"1"``: a ratio)."""
-        return {name: unit for name, (_, unit) in self._columns().items()}
-
     def to_dataframe(self) -> Any:
         """The result's data as a tidy pandas ``DataFrame`` (needs ``railhunt[pandas]``).
 
