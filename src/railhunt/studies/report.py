@@ -37,7 +37,6 @@ th { background: #f0f0f0; }
 td.num { text-align: right; }
 table.headline { width: 100%; table-layout: fixed; font-size: 0.88em; }
 table.headline td, table.headline th { padding: 0.3em 0.4em; overflow-wrap: anywhere; }
-table.headline td.num { overflow-wrap: normal; }
 col.quantity { width: 19%; } col.value { width: 9%; } col.diff { width: 10%; }
 col.unit { width: 7%; } col.where { width: 8%; } col.why { width: 38%; }
 .scroll { overflow-x: auto; max-width: 100%; }
