@@ -62,6 +62,7 @@ from pathlib import Path
 
 import numpy as np
 
+from railhunt.results import Columns, ResultDisplay, Row
 from railhunt.track import SampledTrack
 
 #: Default wavelength band (m): EN 13848-1's ranges D1 to D3 (3-25, 25-70, 70-150 m), in
@@ -160,8 +161,8 @@ def _check_band(band: tuple[float, float]) -> tuple[float, float]:
     return lo, hi
 
 
-@dataclass(frozen=True)
-class TrackIrregularity(SampledTrack):
+@dataclass(frozen=True, repr=False)
+class TrackIrregularity(ResultDisplay, SampledTrack):
     """A lateral alignment on a uniform grid, usable as excitation (a ``SampledTrack``).
 
     Attributes
@@ -199,6 +200,17 @@ class TrackIrregularity(SampledTrack):
     def rms(self) -> float:
         """Root mean square of the alignment (m)."""
         return float(np.sqrt(np.mean(np.square(self.alignment))))
+
+    def _summary(self) -> list[Row]:
+        return [("spectrum", self.spectrum, ""), ("source", self.source or "-", ""),
+                ("seed", self.seed, ""), ("starts at", self.s0, "m"),
+                ("length", self.length, "m"), ("spacing", self.ds, "m"),
+                ("rms alignment", self.rms, "m"),
+                ("largest |alignment|", float(np.max(np.abs(self.alignment))), "m")]  # fmt: skip
+
+    def _columns(self) -> Columns:
+        """One row per sample: track position and lateral alignment."""
+        return {"distance": (self.distance, "m"), "alignment": (self.alignment, "m")}
 
 
 def _taper(n: int, ds: float, taper: float) -> np.ndarray:

@@ -7,6 +7,7 @@ import math
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -23,6 +24,7 @@ from railhunt.kernel.layout import (
     DamperParam,
 )
 from railhunt.model import Model
+from railhunt.results import Columns, ResultDisplay, Row
 from railhunt.track import InitialDisplacement, SampledTrack, SingleDefect
 from railhunt.units import kmh_to_ms, ms_to_kmh
 from railhunt.vehicle import Vehicle
@@ -31,10 +33,18 @@ from railhunt.vehicle import Vehicle
 Y_LIMIT = 0.025
 #: Names of the integrators (:data:`railhunt.kernel.integrators.METHODS`).
 METHODS = tuple(integrators.METHODS)
+#: Unit of a channel by its name's prefix (``y_w1`` -> ``y``; derived channels too).
+_UNITS = {"y": "m", "psi": "rad", "phi": "rad", "dy": "m/s", "dpsi": "rad/s", "dphi": "rad/s",
+          "F": "N", "v": "m/s", **CHANNEL_UNITS}  # fmt: skip
 
 
-@dataclass
-class SimulationResult:
+def channel_unit(name: str) -> str:
+    """SI unit of a channel of :class:`SimulationResult` (``"s"`` for the time ``t``)."""
+    return "s" if name == "t" else _UNITS[name.split("_")[0]]
+
+
+@dataclass(repr=False)
+class SimulationResult(ResultDisplay):
     """Time histories of one run.
 
     Attributes
@@ -99,12 +109,43 @@ class SimulationResult:
 
     def table(self) -> tuple[list[str], np.ndarray]:
         """Column names (with units) and a 2-D array: time, all channels."""
-        units = {"y": "m", "psi": "rad", "phi": "rad", "dy": "m/s", "dpsi": "rad/s",
-                 "dphi": "rad/s", "F": "N", "v": "m/s", **CHANNEL_UNITS}  # fmt: skip
-        names = ["t [s]"] + [f"{n} [{units[n.split('_')[0]]}]" for n in self.channel_names]
+        names = ["t [s]"] + [f"{n} [{channel_unit(n)}]" for n in self.channel_names]
         return names, np.column_stack(
             [self.t, self.x, self.damper_velocity, *self.derived.values()]
         )
+
+    _index = "t"
+
+    def _summary(self) -> list[Row]:
+        y = self["y_w1"] if self.t.size else np.zeros(1)
+        return [("speed", self.speed_kmh, "km/h"),
+                ("status", self.status, ""),
+                ("simulated time", float(self.t[-1] - self.t[0]) if self.t.size else 0.0, "s"),
+                ("samples", self.t.size, ""),
+                ("channels", len(self.channel_names), ""),
+                ("largest |y_w1|", float(np.max(np.abs(y))), "m"),
+                ("excitation left at", self.excitation_end, "s")]  # fmt: skip
+
+    def _columns(self) -> Columns:
+        """Time ``t`` (the index) and every channel, SI units."""
+        cols: Columns = {"t": (self.t, "s")}
+        for name in self.channel_names:
+            cols[name] = (self[name], channel_unit(name))
+        return cols
+
+    def to_xarray(self) -> Any:
+        """The run as an ``xarray.Dataset`` over the time ``t`` (needs ``railhunt[xarray]``).
+
+        Returns
+        -------
+        xarray.Dataset
+            One variable per channel, its SI unit in ``attrs["units"]``; the coordinate
+            ``t`` in s; the dataset's attributes give the speed (km/h), the status and the
+            time the excitation was left (s).
+        """
+        return self._dataset({"speed_kmh": self.speed_kmh, "status": self.status,
+                              "message": self.message,
+                              "excitation_end_s": self.excitation_end})  # fmt: skip
 
     def to_csv(self, path: str | os.PathLike[str]) -> Path:
         """Write all channels to a CSV file (SI units, header with units)."""

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from railhunt.analysis.periodic import PeriodicOrbit
+from railhunt.results import Columns, ResultDisplay, Row
 
 HOPF_TYPES = ("subcritical", "supercritical-a", "supercritical-b")
 
@@ -28,8 +29,8 @@ class Fold:
     index: int  # index of the nearest computed point
 
 
-@dataclass
-class Branch:
+@dataclass(repr=False)
+class Branch(ResultDisplay):
     """One branch of limit cycles, in continuation order.
 
     Attributes
@@ -92,6 +93,20 @@ class Branch:
             out.append(float(s[i] + w * (s[i + 1] - s[i])))
         return out
 
+    def _summary(self) -> list[Row]:
+        return [("origin", self.origin, ""),
+                ("orbits", self.speed_kmh.size, ""),
+                ("speeds", f"{self.speed_kmh.min():.4g} to {self.speed_kmh.max():.4g}", "km/h"),
+                ("largest amplitude", float(self.amplitude.max()), "m"),
+                ("stable orbits", int(np.count_nonzero(self.stable)), ""),
+                ("folds", ", ".join(f"{f.speed_kmh:.1f}" for f in self.folds) or "-", "km/h")]
+
+    def _columns(self) -> Columns:
+        """One row per orbit, in continuation order."""
+        return {"speed_kmh": (self.speed_kmh, "km/h"), "amplitude": (self.amplitude, "m"),
+                "period": (self.period, "s"), "frequency_hz": (self.frequency_hz, "Hz"),
+                "stable": (self.stable, ""), "max_multiplier": (self.max_multiplier, "1")}
+
     def to_dict(self) -> dict:
         """JSON-ready arrays (km/h, m, s)."""
         return {
@@ -106,8 +121,8 @@ class Branch:
         }
 
 
-@dataclass
-class BifurcationDiagram:
+@dataclass(repr=False)
+class BifurcationDiagram(ResultDisplay):
     """Limit-cycle branches of the vehicle versus speed, with the Hopf point and type.
 
     Attributes
@@ -168,6 +183,27 @@ class BifurcationDiagram:
         """
         speeds = self.speeds_at_amplitude(amplitude, stable=False)
         return speeds[0] if speeds else math.nan
+
+    def _summary(self) -> list[Row]:
+        return [("Hopf speed (linear critical speed)", self.hopf_speed_kmh, "km/h"),
+                ("Hopf speed from the orbits", self.hopf_speed_from_orbits_kmh, "km/h"),
+                ("Hopf frequency", self.hopf_frequency_hz, "Hz"),
+                ("lowest limit cycle (fold)", self.fold_speed_kmh, "km/h"),
+                ("Hopf type", self.hopf_type, ""),
+                ("point P (3 mm)", self.point_p_kmh(3e-3), "km/h"),
+                ("branches", len(self.branches), ""),
+                ("orbits", sum(b.speed_kmh.size for b in self.branches), ""),
+                ("complete", self.complete, "")]  # fmt: skip
+
+    def _columns(self) -> Columns:
+        """One row per orbit: ``branch`` (0: born at the Hopf point), its origin, the orbit."""
+        cols: Columns = {"branch": ([], ""), "origin": ([], "")}
+        for i, b in enumerate(self.branches):
+            cols["branch"][0].extend([i] * b.speed_kmh.size)
+            cols["origin"][0].extend([b.origin] * b.speed_kmh.size)
+            for name, (values, unit) in b._columns().items():
+                cols.setdefault(name, ([], unit))[0].extend(np.asarray(values).tolist())
+        return cols
 
     def to_dict(self, point_p_amplitude: float = 3e-3) -> dict:
         """JSON-ready summary (speeds in km/h, amplitudes in m, periods in s)."""

@@ -23,6 +23,7 @@ from railhunt.curve import Curve
 from railhunt.kernel.integrators import OK, STATUS_NAMES
 from railhunt.kernel.layout import N_STATE, Y_W1
 from railhunt.model import Model
+from railhunt.results import Columns, ResultDisplay, Row
 from railhunt.simulation import Y_LIMIT, auto_step, excitation_end_time, integrate_model
 from railhunt.track import SingleDefect
 from railhunt.units import kmh_to_ms
@@ -76,8 +77,8 @@ class Trial:
     status: str  # integrator status ("ok", "derailed", ...)
 
 
-@dataclass
-class CriticalSpeedResult:
+@dataclass(repr=False)
+class CriticalSpeedResult(ResultDisplay):
     """Outcome of :func:`critical_speed`.
 
     Attributes
@@ -106,6 +107,26 @@ class CriticalSpeedResult:
         """Lowest speed judged hunting (km/h)."""
         hunting = [t.speed_kmh for t in self.trials if t.verdict == HUNTING]
         return min(hunting) if hunting else math.nan
+
+    def _summary(self) -> list[Row]:
+        rows: list[Row] = [("nonlinear critical speed", self.speed_kmh, "km/h"),
+                           ("lowest speed hunting", self.first_hunting_kmh, "km/h"),
+                           ("bracketed", self.bracketed, ""),
+                           ("trials", len(self.trials), "")]  # fmt: skip
+        if self.curve is not None:
+            rows.append(("curve radius", self.curve.radius, "m"))
+        return rows
+
+    def _columns(self) -> Columns:
+        """One row per trial speed, in the order tried."""
+        t = self.trials
+        return {"speed_kmh": ([x.speed_kmh for x in t], "km/h"),
+                "verdict": ([x.verdict for x in t], ""),
+                "amplitude": ([x.amplitude for x in t], "m"),
+                "growth_rate": ([x.growth_rate for x in t], "1/s"),
+                "duration": ([x.duration for x in t], "s"),
+                "decided": ([x.decided for x in t], ""),
+                "status": ([x.status for x in t], "")}  # fmt: skip
 
 
 def envelope_peaks(t: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -33,6 +33,7 @@ from railhunt.kernel.layout import (
 )
 from railhunt.kernel.rhs import curve_geometry, derived, rhs
 from railhunt.model import Model
+from railhunt.results import Columns, ResultDisplay, Row
 from railhunt.units import kmh_to_ms, ms_to_kmh
 from railhunt.vehicle import Vehicle
 
@@ -114,8 +115,8 @@ def equilibrium(
     )
 
 
-@dataclass
-class CurvingResult:
+@dataclass(repr=False)
+class CurvingResult(ResultDisplay):
     """The steady-curving state of a vehicle in a constant curve (SI units).
 
     Wheels are given per wheelset (leading first) as ``[left, right]``. Lateral quantities
@@ -198,6 +199,27 @@ class CurvingResult:
         """Damping ratio of the hunting mode (dimensionless)."""
         lam = self.hunting_eigenvalue
         return -lam.real / abs(lam) if abs(lam) > 0 else math.nan
+
+    def _summary(self) -> list[Row]:
+        return [("speed", self.speed_kmh, "km/h"), ("curve radius", self.curve.radius, "m"),
+                ("cant", self.curve.cant, "m"), ("cant deficiency", self.cant_deficiency, "m"),
+                ("unbalanced acceleration", self.unbalanced_acceleration, "m/s^2"),
+                ("largest Y/Q", float(np.max(self.derailment_quotient)), ""),
+                ("largest |ΣY|", float(np.max(np.abs(self.sum_Y))), "N"),
+                ("leading wheelset y", float(self.wheelset_y[0]), "m"),
+                ("stable", self.stable, ""),
+                ("hunting frequency", self.hunting_frequency_hz, "Hz"),
+                ("hunting damping ratio", self.hunting_damping_ratio, "")]  # fmt: skip
+
+    def _columns(self) -> Columns:
+        """One row per wheel (leading wheelset first, left then right)."""
+        n = self.wheelset_y.size
+        rep = lambda a: np.repeat(np.asarray(a), 2)  # noqa: E731  (one value per wheelset)
+        return {"wheelset": (rep(np.arange(1, n + 1)), ""), "side": (["left", "right"] * n, ""),
+                "Y": (self.Y.ravel(), "N"), "Q": (self.Q.ravel(), "N"),
+                "Y_over_Q": (self.derailment_quotient.ravel(), "1"),
+                "sum_Y": (rep(self.sum_Y), "N"), "wheelset_y": (rep(self.wheelset_y), "m"),
+                "attack_angle": (rep(self.attack_angle), "rad")}  # fmt: skip
 
     def to_dict(self) -> dict:
         """JSON-ready summary (SI units; speed in km/h)."""

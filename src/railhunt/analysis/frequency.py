@@ -23,6 +23,7 @@ from railhunt.analysis.linear import eigen_analysis
 from railhunt.analysis.periodic import periodic_orbit, phase_origin
 from railhunt.kernel.layout import FORCES, N_DAMPER, N_STATE, WHEELSET_Y, Y_W1
 from railhunt.model import Model
+from railhunt.results import Columns, ResultDisplay, Row
 from railhunt.simulation import auto_step
 from railhunt.units import kmh_to_ms
 from railhunt.vehicle import Vehicle
@@ -68,8 +69,8 @@ def dominant_frequency(y: np.ndarray, dt: float) -> tuple[float, np.ndarray, np.
     return float(f), freqs, spec
 
 
-@dataclass
-class HuntingFrequency:
+@dataclass(repr=False)
+class HuntingFrequency(ResultDisplay):
     """Outcome of :func:`hunting_frequency`.
 
     Attributes
@@ -117,6 +118,22 @@ class HuntingFrequency:
     y: np.ndarray
     damper_velocity: np.ndarray
     blowoff_velocity: float
+
+    def _summary(self) -> list[Row]:
+        return [("speed", self.speed_kmh, "km/h"), ("hunting frequency", self.frequency_hz, "Hz"),
+                ("source", self.source, ""), ("verdict", self.verdict, ""),
+                ("limit-cycle amplitude", self.amplitude, "m"),
+                ("eigenvalue frequency", self.eigen_frequency_hz, "Hz"),
+                ("eigenvalue damping ratio", self.eigen_damping_ratio, ""),
+                ("FFT frequency", self.fft_frequency_hz, "Hz"),
+                ("orbit frequency", self.orbit_frequency_hz, "Hz"),
+                ("blow-off velocity", self.blowoff_velocity, "m/s")]  # fmt: skip
+
+    def _columns(self) -> Columns:
+        """One row: the numbers of :meth:`to_dict` (the histories ``t, y`` stay arrays)."""
+        units = {"speed_kmh": "km/h", "amplitude": "m", "eigen_damping_ratio": "1",
+                 "source": "", "verdict": ""}  # fmt: skip
+        return {key: (getattr(self, key), units.get(key, "Hz")) for key in self.to_dict()}
 
     def to_dict(self) -> dict:
         """JSON-ready numbers (no histories)."""

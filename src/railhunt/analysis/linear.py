@@ -23,12 +23,13 @@ from railhunt.analysis.modes import eigenvalues, hunting_mode_index, mac, sorted
 from railhunt.curve import Curve
 from railhunt.kernel.layout import N_DOF, N_STATE
 from railhunt.model import Model
+from railhunt.results import Columns, ResultDisplay, Row
 from railhunt.units import kmh_to_ms
 from railhunt.vehicle import Vehicle
 
 
-@dataclass
-class EigenResult:
+@dataclass(repr=False)
+class EigenResult(ResultDisplay):
     """Eigenvalues of the linearised model at a set of speeds.
 
     Attributes
@@ -55,9 +56,27 @@ class EigenResult:
         """Hunting-mode damping ratio ``-Re(lambda) / |lambda|`` (dimensionless)."""
         return -self.hunting.real / np.abs(self.hunting)
 
+    def _summary(self) -> list[Row]:
+        zeta = self.hunting_damping_ratio
+        i = int(np.argmin(zeta))
+        return [("speeds", f"{self.speeds_kmh.min():.4g} to {self.speeds_kmh.max():.4g}", "km/h"),
+                ("number of speeds", self.speeds_kmh.size, ""),
+                ("eigenvalues per speed", self.eigenvalues.shape[1], ""),
+                ("least hunting damping ratio", zeta[i], ""),
+                ("at speed", self.speeds_kmh[i], "km/h"),
+                ("hunting frequency there", self.hunting_frequency_hz[i], "Hz")]  # fmt: skip
 
-@dataclass
-class LinearCriticalSpeed:
+    def _columns(self) -> Columns:
+        """One row per speed: the hunting mode (all eigenvalues: ``eigenvalues``)."""
+        return {"speed_kmh": (self.speeds_kmh, "km/h"),
+                "hunting_real": (self.hunting.real, "1/s"),
+                "hunting_imag": (self.hunting.imag, "1/s"),
+                "hunting_frequency_hz": (self.hunting_frequency_hz, "Hz"),
+                "hunting_damping_ratio": (self.hunting_damping_ratio, "1")}  # fmt: skip
+
+
+@dataclass(repr=False)
+class LinearCriticalSpeed(ResultDisplay):
     """Outcome of :func:`linear_critical_speed`.
 
     Attributes
@@ -77,6 +96,19 @@ class LinearCriticalSpeed:
     frequency_hz: float
     eigenvalue: complex
     is_hunting_mode: bool
+
+    def _summary(self) -> list[Row]:
+        return [("linear critical speed", self.speed_kmh, "km/h"),
+                ("frequency", self.frequency_hz, "Hz"),
+                ("eigenvalue", self.eigenvalue, "1/s"),
+                ("hunting mode", self.is_hunting_mode, "")]  # fmt: skip
+
+    def _columns(self) -> Columns:
+        """One row."""
+        lam = complex(self.eigenvalue)
+        return {"speed_kmh": (self.speed_kmh, "km/h"), "frequency_hz": (self.frequency_hz, "Hz"),
+                "eigenvalue_real": (lam.real, "1/s"), "eigenvalue_imag": (lam.imag, "1/s"),
+                "is_hunting_mode": (self.is_hunting_mode, "")}  # fmt: skip
 
 
 def eigen_analysis(

@@ -33,6 +33,7 @@ from railhunt.analysis.newton import newton
 from railhunt.kernel.flow import flow
 from railhunt.kernel.layout import N_DAMPER, N_DOF, N_STATE, RATE0, WHEELSET_Y, Y_W1
 from railhunt.model import Model
+from railhunt.results import Columns, ResultDisplay, Row
 from railhunt.simulation import auto_step
 from railhunt.units import kmh_to_ms, ms_to_kmh
 
@@ -48,8 +49,8 @@ FD_STEP = 1e-5
 MIN_STATE = 1e-2
 
 
-@dataclass
-class PeriodicOrbit:
+@dataclass(repr=False)
+class PeriodicOrbit(ResultDisplay):
     """A limit cycle of the vehicle on ideal track.
 
     Attributes
@@ -104,6 +105,18 @@ class PeriodicOrbit:
     def max_multiplier(self) -> float:
         """Largest modulus among the non-trivial Floquet multipliers."""
         return float(np.max(np.abs(_nontrivial(self.multipliers))))
+
+    def _summary(self) -> list[Row]:
+        return [("speed", self.speed_kmh, "km/h"), ("period", self.period, "s"),
+                ("frequency", self.frequency_hz, "Hz"), ("amplitude", self.amplitude, "m"),
+                ("stable", self.stable, ""),
+                ("largest non-trivial multiplier", self.max_multiplier, ""),
+                ("residual", self.residual, ""), ("Newton iterations", self.iterations, "")]
+
+    def _columns(self) -> Columns:
+        """One row per wheelset: its amplitude on the orbit."""
+        return {"wheelset": (np.arange(1, self.wheelset_amplitudes.size + 1), ""),
+                "amplitude": (self.wheelset_amplitudes, "m")}
 
 
 def _nontrivial(mult: np.ndarray) -> np.ndarray:

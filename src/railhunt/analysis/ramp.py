@@ -21,13 +21,14 @@ import numpy as np
 from railhunt.kernel.integrators import OK
 from railhunt.kernel.layout import N_STATE, WHEELSET_Y, Y_W1
 from railhunt.model import Model
+from railhunt.results import Columns, ResultDisplay, Row
 from railhunt.simulation import Y_LIMIT, auto_step, integrate_model
 from railhunt.units import kmh_to_ms
 from railhunt.vehicle import Vehicle
 
 
-@dataclass
-class RampResult:
+@dataclass(repr=False)
+class RampResult(ResultDisplay):
     """Outcome of :func:`critical_speed_ramp`.
 
     Attributes
@@ -46,6 +47,15 @@ class RampResult:
     speeds_kmh: np.ndarray
     amplitudes: np.ndarray
     start_amplitude: float
+
+    def _summary(self) -> list[Row]:
+        return [("limit cycle died at", self.speed_kmh, "km/h"),
+                ("amplitude at the start", self.start_amplitude, "m"),
+                ("segments", self.speeds_kmh.size, "")]  # fmt: skip
+
+    def _columns(self) -> Columns:
+        """One row per constant-speed segment of the ramp."""
+        return {"speed_kmh": (self.speeds_kmh, "km/h"), "amplitude": (self.amplitudes, "m")}
 
 
 def critical_speed_ramp(

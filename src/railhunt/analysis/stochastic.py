@@ -43,6 +43,7 @@ from scipy import signal
 from railhunt.analysis.search import bracket_and_bisect, check_search
 from railhunt.irregularity import TrackIrregularity, track_irregularity
 from railhunt.model import Model
+from railhunt.results import Columns, ResultDisplay, Row
 from railhunt.simulation import SimulationResult, simulate
 from railhunt.track import SampledTrack
 from railhunt.units import kmh_to_ms
@@ -74,8 +75,8 @@ def acceleration_limit(vehicle: Vehicle) -> float:
     return 0.5 * (12.0 - bogie_mass(vehicle) / 1000.0 / 5.0)
 
 
-@dataclass
-class Assessment:
+@dataclass(repr=False)
+class Assessment(ResultDisplay):
     """The instability criterion evaluated on one run.
 
     Attributes
@@ -137,6 +138,24 @@ class Assessment:
         if self.status == "ok" and not self.evaluated:
             return "not evaluated"
         return UNSTABLE if self.unstable else STABLE
+
+    def _summary(self) -> list[Row]:
+        return [("speed", self.speed_kmh, "km/h"), ("verdict", self.verdict, ""),
+                ("instability frequency f0", self.f0_hz, "Hz"),
+                ("largest ΣY rms / limit", self.sum_y_ratio, ""),
+                ("ΣY limit", self.sum_y_limit, "N"),
+                ("largest bogie acceleration rms / limit", self.acceleration_ratio, ""),
+                ("acceleration limit", self.acceleration_limit, "m/s^2"),
+                ("windows", self.distance.size, ""), ("run status", self.status, "")]
+
+    def _columns(self) -> Columns:
+        """One row per 100 m window: its centre and the rms of each wheelset's channels."""
+        cols: Columns = {"distance": (self.distance, "m")}
+        for j in range(self.sum_y_rms.shape[1] if self.sum_y_rms.ndim == 2 else 0):
+            cols[f"sum_y_rms_w{j + 1}"] = (self.sum_y_rms[:, j], "N")
+        for j in range(self.acceleration_rms.shape[1] if self.acceleration_rms.ndim == 2 else 0):
+            cols[f"acceleration_rms_w{j + 1}"] = (self.acceleration_rms[:, j], "m/s^2")
+        return cols
 
 
 def _max_ratio(values: np.ndarray, limit: float) -> float:
@@ -292,8 +311,8 @@ def run_on_track(
     return res, assess(res, vehicle, f0_hz=f0_hz)
 
 
-@dataclass
-class StochasticCriticalSpeedResult:
+@dataclass(repr=False)
+class StochasticCriticalSpeedResult(ResultDisplay):
     """Outcome of :func:`stochastic_critical_speed`.
 
     Attributes
@@ -316,6 +335,22 @@ class StochasticCriticalSpeedResult:
     trials: list[Assessment] = field(default_factory=list)
     bracketed: bool = True
     irregularity: SampledTrack | None = None
+
+    def _summary(self) -> list[Row]:
+        track = getattr(self.irregularity, "spectrum", None)
+        return [("stochastic critical speed", self.speed_kmh, "km/h"),
+                ("highest speed meeting the criterion", self.highest_stable_kmh, "km/h"),
+                ("bracketed", self.bracketed, ""), ("trials", len(self.trials), ""),
+                ("track", track if track is not None else "-", "")]  # fmt: skip
+
+    def _columns(self) -> Columns:
+        """One row per trial speed, in the order tried."""
+        t = self.trials
+        return {"speed_kmh": ([a.speed_kmh for a in t], "km/h"),
+                "verdict": ([a.verdict for a in t], ""), "f0_hz": ([a.f0_hz for a in t], "Hz"),
+                "sum_y_ratio": ([a.sum_y_ratio for a in t], "1"),
+                "acceleration_ratio": ([a.acceleration_ratio for a in t], "1"),
+                "status": ([a.status for a in t], "")}  # fmt: skip
 
 
 def stochastic_critical_speed(

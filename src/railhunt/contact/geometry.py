@@ -28,15 +28,17 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import brentq
 
+from railhunt.contact.conicity import ConicityError, equivalent_conicity
 from railhunt.contact.profiles import Profile, ProfileError, s1002, uic60
+from railhunt.results import Columns, ResultDisplay, Row
 
 __all__ = ["ContactGeometry", "contact_geometry", "default_profiles"]
 
 _NO_RAIL = 1.0  # depth (m) assigned outside the rail's lateral range: never in contact
 
 
-@dataclass(frozen=True)
-class ContactGeometry:
+@dataclass(frozen=True, repr=False)
+class ContactGeometry(ResultDisplay):
     """Contact geometry of a wheelset versus its lateral displacement (SI units).
 
     Attributes
@@ -99,6 +101,30 @@ class ContactGeometry:
         yr = self.y[(self.y < 0) & (self.delta_right > angle)]
         return (float(yl.min()) if yl.size else math.nan,
                 float(yr.max()) if yr.size else math.nan)
+
+    def _summary(self) -> list[Row]:
+        try:
+            conicity: float | str = equivalent_conicity(self.y, self.delta_r, 3e-3)
+        except ConicityError as exc:
+            conicity = f"not defined ({exc})"
+        centre = int(np.argmin(np.abs(self.y)))
+        flange = self.flange_contact_y()
+        return [("wheel / rail", f"{self.params.get('wheel', '?')} / "
+                 f"{self.params.get('rail', '?')}", ""),
+                ("lateral displacement", f"{self.y[0] * 1e3:.4g} to {self.y[-1] * 1e3:.4g}",
+                 "mm"),
+                ("points", self.y.size, ""),
+                ("rolling radius, centred", float(self.r_left[centre]), "m"),
+                ("equivalent conicity at 3 mm (EN 15302 B)", conicity, ""),
+                ("flange contact from y", f"{flange[0] * 1e3:+.1f}, {flange[1] * 1e3:+.1f}", "mm"),
+                ("contact-point jumps", int(np.count_nonzero(self.jump)), "")]  # fmt: skip
+
+    def _columns(self) -> Columns:
+        """One row per lateral displacement ``y``."""
+        return {"y": (self.y, "m"), "r_left": (self.r_left, "m"), "r_right": (self.r_right, "m"),
+                "delta_r": (self.delta_r, "m"), "delta_left": (self.delta_left, "rad"),
+                "delta_right": (self.delta_right, "rad"), "roll": (self.roll, "rad"),
+                "jump": (self.jump, "")}  # fmt: skip
 
 
 def default_profiles() -> tuple[Profile, Profile]:

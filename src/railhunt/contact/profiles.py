@@ -30,6 +30,7 @@ __all__ = [
     "Profile",
     "ProfileError",
     "read_profile",
+    "write_profile",
     "s1002",
     "shipped_profile",
     "normal_distance",
@@ -40,6 +41,7 @@ __all__ = [
 SHIPPED = {
     "S1002": "MBench_S1002_v3.prw",
     "UIC60": "MBench_UIC60_v3.prr",
+    "S1002_worn": "worn_s1002.prw",
 }
 
 
@@ -192,6 +194,47 @@ def read_profile(
     return Profile(y, z, kind, path.name, str(path), meta)
 
 
+def write_profile(profile: Profile, path: str | Path, comment: str = "") -> Path:
+    """Write a profile as a SIMPACK file (``.prw``/``.prr``) or two columns ``y z`` in mm.
+
+    The inverse of :func:`read_profile`: reading the file back gives the same points to
+    1e-10 m, in the convention of the module docstring (no shift, rotation or mirroring).
+
+    Parameters
+    ----------
+    profile : Profile
+        The profile (SI).
+    path : str or pathlib.Path
+        The file: ``.prw`` or ``.prr`` for SIMPACK format (the header's ``type`` from
+        ``profile.kind``), any other suffix for two whitespace-separated columns in mm.
+    comment : str
+        Lines written at the top of the file as ``!`` (SIMPACK) or ``#`` comments.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+    """
+    path = Path(path)
+    simpack = path.suffix.lower() in (".prw", ".prr")
+    mark = "!" if simpack else "#"
+    lines = [f"{mark} {line}".rstrip() for line in comment.splitlines()]
+    points = [f"{y:+.7f} {z:+.7f}" for y, z in zip(profile.y * 1e3, profile.z * 1e3, strict=True)]
+    if simpack:
+        lines += ["  header.begin", "    version = 1",
+                  f"    type = {1 if profile.kind == 'wheel' else 0}"
+                  "    ! 0=rail profile, 1=wheel profile", "  header.end",
+                  "  spline.begin", "    units.len.f = +1.000000000000000e+03   ! mm",
+                  "    mirror.y = 0", "    mirror.z = 0", "    point.begin",
+                  "    ! y (mm), positive toward the field side   z (mm), positive downward",
+                  *points, "    point.end", "  spline.end"]  # fmt: skip
+    else:
+        lines += [f"# {profile.kind} profile: y (mm, positive toward the field side), "
+                  "z (mm, positive downward)", *points]  # fmt: skip
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    return path
+
+
 def _parse_columns(text: str, where: str) -> tuple[np.ndarray, np.ndarray]:
     rows = []
     for line in text.splitlines():
@@ -267,7 +310,8 @@ def _parse_simpack(text: str, where: str) -> tuple[np.ndarray, np.ndarray, dict]
 
 
 def shipped_profile(name: str) -> Profile:
-    """A profile shipped with railhunt: ``"S1002"`` (wheel) or ``"UIC60"`` (rail, as filed).
+    """A profile shipped with railhunt: ``"S1002"`` (wheel), ``"UIC60"`` (rail, as filed) or
+    ``"S1002_worn"`` (S1002 with 2 mm of hollow wear, :func:`railhunt.contact.wear.worn_s1002`).
 
     The files are the Manchester contact benchmark's profiles (from the examples of the
     CONTACT library by E. Vollebregt, Apache License 2.0). Note that the UIC60 file is

@@ -30,6 +30,9 @@ from typing import Any
 
 import numpy as np
 
+from railhunt.results import Columns, ResultDisplay, Row
+from railhunt.vehicle.parameters import PARAMETERS
+
 #: Output name -> its columns, in file order.
 OUTPUT_COLUMNS: dict[str, tuple[str, ...]] = {
     "critical_speed": ("critical_speed_kmh",),
@@ -65,6 +68,16 @@ def columns_for(parameters: Sequence[str], outputs: Sequence[str]) -> list[str]:
     for name in outputs:
         cols.extend(OUTPUT_COLUMNS[name])
     return [*cols, "status", "message"]
+
+
+def column_unit(name: str) -> str:
+    """Unit of a results column: a vehicle parameter's SI unit, or from its suffix."""
+    if name in PARAMETERS:
+        return PARAMETERS[name].unit
+    for suffix, unit in (("_kmh", "km/h"), ("_hz", "Hz"), ("_m", "m"), ("_s", "s")):
+        if name.endswith(suffix):
+            return unit
+    return ""
 
 
 def sidecar_path(path: Path) -> Path:
@@ -128,8 +141,8 @@ def _require_pyarrow() -> Any:
     return pyarrow
 
 
-@dataclass
-class SweepResults:
+@dataclass(repr=False)
+class SweepResults(ResultDisplay):
     """The rows of a study (one dict per point, sorted by point) and its description.
 
     Attributes
@@ -203,6 +216,33 @@ class SweepResults:
 
     def __len__(self) -> int:
         return len(self.rows)
+
+    def _summary(self) -> list[Row]:
+        statuses = [r.get("status", "") for r in self.rows]
+        rows: list[Row] = [("points", len(self.rows), ""),
+                           ("parameters", ", ".join(self.parameters) or "-", ""),
+                           ("lines", len(self.lines) if self.rows else 0, ""),
+                           ("ok", statuses.count(STATUS_OK), ""),
+                           ("no critical speed", statuses.count(STATUS_NO_CRITICAL_SPEED), ""),
+                           ("failed", statuses.count(STATUS_FAILED), "")]  # fmt: skip
+        for name in ("critical_speed_kmh", "linear_critical_speed_kmh", "hunting_frequency_hz"):
+            if name in self.columns and self.rows:
+                values = np.asarray(self.column(name), dtype=float)
+                if np.any(np.isfinite(values)):
+                    unit = column_unit(name)
+                    rows.append((name, f"{np.nanmin(values):.4g} to {np.nanmax(values):.4g}",
+                                 unit))  # fmt: skip
+        if self.path is not None:
+            rows.append(("file", str(self.path), ""))
+        if self.computed or self.resumed or self.lost:
+            rows += [("computed / resumed / lost", f"{self.computed} / {self.resumed} / "
+                      f"{self.lost}", ""), ("wall time", self.elapsed_s, "s")]  # fmt: skip
+        return rows
+
+    def _columns(self) -> Columns:
+        """The rows of the results file, one per point (units: :func:`column_unit`)."""
+        return {name: ([r.get(name) for r in self.rows], column_unit(name))
+                for name in self.columns}  # fmt: skip
 
     def to_csv_text(self) -> str:
         """The rows as CSV text (header + one line per point)."""

@@ -35,8 +35,9 @@ class Vehicle(VehicleFields):
         Free text.
     contact : ContactSpec, optional
         Contact geometry from profiles (tabulated in the model); None: the polynomials.
-    **parameters : float
-        One keyword per parameter of :data:`PARAMETERS` (e.g. ``M_c`` in kg).
+    M_c, C_d1 : float
+        Every parameter of :data:`PARAMETERS` is one keyword, in its SI unit (``M_c``, the
+        car body mass in kg; ``C_d1``, the yaw damper's first-stage damping in N*s/m; ...).
     """
 
     def __post_init__(self) -> None:
