@@ -24,6 +24,7 @@ from railhunt.analysis.periodic import periodic_orbit, phase_origin
 from railhunt.kernel.layout import FORCES, N_DAMPER, N_STATE, WHEELSET_Y, Y_W1
 from railhunt.model import Model
 from railhunt.simulation import auto_step
+from railhunt.track import SampledTrack, SingleDefect, check_excitation
 from railhunt.units import kmh_to_ms
 from railhunt.vehicle import Vehicle
 
@@ -185,6 +186,7 @@ def hunting_frequency(
         raise ValueError(
             f"initial_amplitude = {initial_amplitude!r} m is invalid: must be in (0, 0.02] m"
         )
+    check_excitation(excitation, (SingleDefect, SampledTrack))
     judgement = judgement or Judgement()
     if not (math.isfinite(fft_window) and 4 <= fft_window <= judgement.max_duration):
         raise ValueError(f"fft_window = {fft_window!r} s is invalid: must be in [4, "

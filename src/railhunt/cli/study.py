@@ -16,10 +16,11 @@ from typing import Any
 import click
 
 from railhunt.cli.errors import CliError, user_input
+from railhunt.cli.options import check_outputs
 from railhunt.cli.rules import Excludes, Requires
 
-__all__ = ["STUDY_RULES", "check_workers_option", "optional_out_rules", "report_lost",
-           "running_study", "study_options"]  # fmt: skip
+__all__ = ["STUDY_RULES", "check_study_outputs", "check_workers_option", "optional_out_rules",
+           "report_lost", "running_study", "study_options"]  # fmt: skip
 
 Decorator = Callable[[Callable[..., Any]], Callable[..., Any]]
 
@@ -32,10 +33,32 @@ STUDY_RULES = (
 
 
 def optional_out_rules() -> tuple[Requires, ...]:
-    """The rules of a study whose ``--out`` may be left out: ``--resume`` and
-    ``--overwrite`` are about that file."""
-    return (Requires(("--resume", "--overwrite"), "--out",
+    """The rules of a study whose ``--out`` may be left out: ``--resume`` is about that
+    file (``--overwrite`` is also about the study's other output files)."""
+    return (Requires("--resume", "--out",
                      "{a} is about the results file: give {b} FILE"),)  # fmt: skip
+
+
+def check_study_outputs(out: Path | None, resume: bool, overwrite: bool,
+                        **files: Path | None) -> None:  # fmt: skip
+    """Check a study's results file ``out`` and its other output ``files`` before it starts.
+
+    ``out`` may exist with ``--resume`` (it is continued) or ``--overwrite`` (replaced);
+    the other files follow the overwrite policy of :func:`railhunt.cli.options.check_outputs`.
+    """
+    from railhunt.studies.store import journal_path
+
+    check_outputs(overwrite=overwrite, **files)
+    if out is None:
+        return
+    for option, path in files.items():
+        if path is not None and path.resolve() == out.resolve():
+            raise CliError(f"--out and --{option} both name {out}: give each its own file")
+    exists = out.exists() or journal_path(out).exists()
+    if exists and not (resume or overwrite):
+        raise CliError(f"--out {out} exists: continue it with --resume, replace it with "
+                       "--overwrite, or choose another file")  # fmt: skip
+    check_outputs(overwrite=True, out=out)
 
 
 def study_options(out_required: bool = True,
@@ -56,7 +79,7 @@ def study_options(out_required: bool = True,
                             help="Worker processes on this machine [default: all cores; 1: "
                             "no Dask].")(func)  # fmt: skip
         func = click.option("--overwrite", is_flag=True,
-                            help="Replace FILE if it exists.")(func)  # fmt: skip
+                            help="Replace FILE (and any other output file) if it exists.")(func)
         func = click.option("--resume", is_flag=True,
                             help="Continue FILE: compute only its missing points.")(func)
         return click.option("--out", "out", type=click.Path(dir_okay=False, path_type=Path),

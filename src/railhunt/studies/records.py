@@ -139,6 +139,8 @@ class Report:
         Total run time (s).
     workers : int
         Number of Dask workers used (0: none, everything in this process).
+    vehicle_fingerprint : str
+        Fingerprint of the vehicle's parameters (:func:`railhunt.provenance.vehicle_fingerprint`).
     """
 
     out_dir: Path
@@ -151,6 +153,7 @@ class Report:
     quick: bool
     seconds: float
     workers: int = 0
+    vehicle_fingerprint: str = ""
 
     @property
     def headline(self) -> list[Headline]:
@@ -173,6 +176,7 @@ class Report:
         return {
             "railhunt_version": self.version,
             "vehicle": self.vehicle,
+            "vehicle_fingerprint": self.vehicle_fingerprint,
             "date": self.date,
             "quick": self.quick,
             "seconds": round(self.seconds, 2),

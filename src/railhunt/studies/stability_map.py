@@ -28,7 +28,7 @@ from railhunt.studies.store import (
     SweepResults,
     columns_for,
 )
-from railhunt.track import SingleDefect
+from railhunt.track import SampledTrack, SingleDefect, check_excitation
 from railhunt.vehicle import Vehicle
 
 #: The analyses a stability map can run at each radius.
@@ -166,6 +166,7 @@ def stability_map(
         ``critical_speed_kmh``, ``status`` and ``message``.
     """
     radii = check_radii(radii)
+    check_excitation(excitation, (SingleDefect, SampledTrack))
     outputs = tuple(outputs)
     bad = [o for o in outputs if o not in MAP_OUTPUTS]
     if bad or not outputs:
@@ -232,12 +233,14 @@ def _describe(vehicle: Vehicle, radii: list[float], cant: float,
     """The study description (sidecar); its fingerprint decides whether a file resumes."""
     from railhunt import __version__
     from railhunt._cache import source_hash
+    from railhunt.provenance import provenance, vehicle_block
 
     meta: dict[str, Any] = {
         "railhunt": __version__,
         "source": source_hash(),
         "study": "stability-map",
-        "vehicle": {"parameters": vehicle.as_dict(), "contact": repr(vehicle.contact)},
+        "vehicle": vehicle_block(vehicle),
+        "provenance": provenance(vehicle),
         "radii": [r if math.isfinite(r) else "inf" for r in radii],
         "direction": direction,
         "outputs": list(outputs),

@@ -29,7 +29,7 @@ from railhunt.studies.store import (
     SweepResults,
     columns_for,
 )
-from railhunt.track import SingleDefect
+from railhunt.track import SampledTrack, SingleDefect, check_excitation
 from railhunt.vehicle import Vehicle
 
 
@@ -256,6 +256,7 @@ def sweep(
                          "in (0, 0.02] m")  # fmt: skip
     if excitation is None:
         excitation = SingleDefect()
+    check_excitation(excitation, (SingleDefect, SampledTrack))
     tie_map = parse_ties(ties)
     points = build_design(vehicle, parameters, design, samples, seed, ties)
     for p in points:  # every combination must make a valid vehicle, before any work starts
@@ -321,13 +322,15 @@ def _describe(vehicle: Vehicle, parameters: Mapping[str, object], outputs: tuple
     """
     from railhunt import __version__
     from railhunt._cache import source_hash
+    from railhunt.provenance import provenance, vehicle_block
 
     names = list(parameters)
     param_cols = list(points[0].values)
     meta: dict[str, Any] = {
         "railhunt": __version__,
         "source": source_hash(),
-        "vehicle": {"parameters": vehicle.as_dict(), "contact": repr(vehicle.contact)},
+        "vehicle": vehicle_block(vehicle),
+        "provenance": provenance(vehicle),
         "design": design,
         "parameters": {n: _json_values(parameters[n]) for n in names},
         "ties": {f: [lf[0], lf[1]] for f, lf in tie_map.items()},

@@ -19,6 +19,7 @@ from railhunt.cli.options import (
     file_option,
     initial_amplitude_option,
     kmh_option,
+    overwrite_option,
     vehicle_options,
 )
 from railhunt.cli.output import fmt, json_safe, spinner, stdout_console
@@ -73,12 +74,14 @@ def _parse_forces(ctx: click.Context, param: click.Parameter,
 @curve_options("Length of the transition curves of --curve-radius (m), recorded in the JSON; "
                "the limit cycles are those of the constant curve and do not depend on it "
                "[default: R/10, within 20-300 m].")
+@overwrite_option
 @vehicle_options
 def bifurcation_command(from_kmh: float, to_kmh: float, initial_mm: float, as_json: bool,
                         png_file: Path | None, fu_family: list[float] | None,
                         family_png: Path | None, curve_radius: float | None,
                         cant_mm: float | None, transition: float | None, direction: str,
-                        vehicle_file: Path | None, sets: dict[str, float]) -> None:  # fmt: skip
+                        overwrite: bool, vehicle_file: Path | None,
+                        sets: dict[str, float]) -> None:  # fmt: skip
     """Limit cycles of the vehicle on ideal track versus speed.
 
     \b
@@ -97,7 +100,7 @@ def bifurcation_command(from_kmh: float, to_kmh: float, initial_mm: float, as_js
     over the whole period (a curve has no mirror symmetry); amplitudes are
     half the peak-to-peak swing of the leading wheelset.
     """
-    check_outputs(png=png_file, **{"family-png": family_png})
+    check_outputs(overwrite=overwrite, png=png_file, **{"family-png": family_png})
     vehicle = build_vehicle(vehicle_file, sets)
     curve = build_curve(curve_radius, cant_mm, transition, direction)
     in_curve = {} if curve is None else {"curve": curve}

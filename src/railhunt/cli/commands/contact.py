@@ -9,7 +9,7 @@ from pathlib import Path
 import click
 
 from railhunt.cli.errors import CliError, user_input
-from railhunt.cli.options import check_outputs, number_range
+from railhunt.cli.options import check_outputs, number_range, overwrite_option
 from railhunt.cli.output import json_safe
 from railhunt.cli.rules import Ordered, command
 
@@ -75,10 +75,11 @@ RULES = (
 @click.option("--csv", "csv_file", type=click.Path(dir_okay=False, path_type=Path),
               help="Write the table (mm, rad, mrad).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (SI units).")
+@overwrite_option
 def contact_command(
     wheel: str, rail: str, inclination: float, gauge: float, back_to_back: float,
     r0: float, y_max: float, y_step: float, amplitude: float, png_file: Path | None,
-    csv_file: Path | None, as_json: bool,
+    csv_file: Path | None, as_json: bool, overwrite: bool,
 ) -> None:
     """Contact geometry of a wheelset on its rails, and its equivalent conicity.
 
@@ -103,7 +104,7 @@ def contact_command(
     )
     from railhunt.contact.conicity import ConicityError
 
-    check_outputs(png=png_file, csv=csv_file)
+    check_outputs(overwrite=overwrite, png=png_file, csv=csv_file)
     with user_input("--wheel: "):
         w = s1002(step=1e-5) if wheel.upper() == "S1002" else read_profile(wheel, "wheel")
     with user_input("--rail: "):

@@ -20,6 +20,7 @@ from railhunt.cli.options import (
     direction_option,
     file_option,
     number_range,
+    overwrite_option,
     radius_option,
     transition_option,
     vehicle_options,
@@ -47,9 +48,10 @@ ENTRY_SETTLE = 100.0
 @file_option("--png", "png_file", "Draw the curve entry: a run through the entry transition "
              "into the constant curve (wheelset displacements, yaw damper forces against the "
              "blow-off force F_u, Y/Q of the leading wheelset).")  # fmt: skip
+@overwrite_option
 @vehicle_options
 def curve_command(radius: float, cant_mm: float | None, speed: float, transition: float | None,
-                  direction: str, as_json: bool, png_file: Path | None,
+                  direction: str, as_json: bool, png_file: Path | None, overwrite: bool,
                   vehicle_file: Path | str | None, sets: dict[str, float]) -> None:  # fmt: skip
     """Steady curving of the vehicle in the constant part of a curve, and its stability.
 
@@ -69,7 +71,7 @@ def curve_command(radius: float, cant_mm: float | None, speed: float, transition
     wheel (a wheel pressing its flange against its rail has Y > 0); an angle
     of attack is + when the wheelset's front points toward the outer rail.
     """
-    check_outputs(png=png_file)
+    check_outputs(overwrite=overwrite, png=png_file)
     vehicle = build_vehicle(vehicle_file, sets)
     curve = build_curve(radius, cant_mm, transition, direction, start=CURVE_LEAD_IN)
 

@@ -13,6 +13,7 @@ from railhunt.cli.options import (
     file_option,
     initial_amplitude_option,
     kmh_option,
+    overwrite_option,
     speed_count,
     vehicle_options,
 )
@@ -31,10 +32,12 @@ from railhunt.cli.rules import command
 @file_option("--damper-png", "damper_png", "Draw, like the paper's Fig. 8, the leading "
              "wheelset's displacement and a yaw damper's velocity against the blow-off velocity "
              "at the first speed with a limit cycle.")
+@overwrite_option
 @vehicle_options
 def frequency_command(from_kmh: float, to_kmh: float, step_kmh: float, initial_mm: float,
                       as_json: bool, png_file: Path | None, damper_png: Path | None,
-                      vehicle_file: Path | None, sets: dict[str, float]) -> None:  # fmt: skip
+                      overwrite: bool, vehicle_file: Path | None,
+                      sets: dict[str, float]) -> None:  # fmt: skip
     """Hunting frequency of the leading wheelset versus speed (Hz).
 
     \b
@@ -44,7 +47,7 @@ def frequency_command(from_kmh: float, to_kmh: float, step_kmh: float, initial_m
     cycle (FFT of the displacement after the transient, refined by shooting the
     periodic orbit). The switch between the two is the paper's frequency jump.
     """
-    check_outputs(png=png_file, **{"damper-png": damper_png})
+    check_outputs(overwrite=overwrite, png=png_file, **{"damper-png": damper_png})
     n = speed_count(from_kmh, to_kmh, step_kmh, 500)
     vehicle = build_vehicle(vehicle_file, sets)
     import numpy as np

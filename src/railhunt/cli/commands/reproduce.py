@@ -10,6 +10,7 @@ from typing import Any
 import click
 
 from railhunt.cli.errors import CliError
+from railhunt.cli.options import check_output_folder, overwrite_option
 from railhunt.cli.output import show_progress, spinner, stdout_console
 from railhunt.cli.rules import Excludes, command
 
@@ -80,7 +81,7 @@ def _difference_style(agrees: bool | None) -> str:
 @click.option("--out", "out_dir", required=True, metavar="DIR",
               type=click.Path(file_okay=False, path_type=Path),
               help="Folder for report.html, headline.json and the figures (created if "
-              "missing; files of an earlier run are overwritten).")  # fmt: skip
+              "missing; files of an earlier run are replaced only with --overwrite).")
 @click.option("--quick", is_flag=True,
               help="Coarser and faster (under a minute): fewer speeds, a smaller F_u family, "
               "fewer sweep points, the stability map without the nonlinear search.")  # fmt: skip
@@ -90,8 +91,9 @@ def _difference_style(agrees: bool | None) -> str:
 @click.option("--workers", type=click.IntRange(min=1, max=256), metavar="N",
               help="Worker processes of the local Dask cluster (default: one per core; 1: "
               "no cluster, everything in this process).")  # fmt: skip
+@overwrite_option
 def reproduce_command(out_dir: Path, quick: bool, scheduler: str | None,
-                      workers: int | None) -> None:  # fmt: skip
+                      workers: int | None, overwrite: bool) -> None:  # fmt: skip
     """Recompute the paper's Figs. 6, 7, 8, 10-13 for its vehicle and compare its numbers.
 
     \b
@@ -108,8 +110,9 @@ def reproduce_command(out_dir: Path, quick: bool, scheduler: str | None,
     2000, 4000 and 8000 m with 150 mm cant and on straight track
     (DIR/stability_map.png and .csv); --quick leaves out the nonlinear one.
     """
-    if out_dir.exists() and not out_dir.is_dir():
-        raise CliError(f"--out {out_dir}: exists and is not a folder")
+    from railhunt.studies.reproduce import OUTPUT_FILES
+
+    check_output_folder("--out", out_dir, OUTPUT_FILES, overwrite)
     try:
         out_dir.mkdir(parents=True, exist_ok=True)
     except OSError as exc:

@@ -11,7 +11,13 @@ from typing import Any
 import click
 
 from railhunt.cli.errors import CliError
-from railhunt.cli.options import check_outputs, file_option, load_results, results_argument
+from railhunt.cli.options import (
+    check_outputs,
+    file_option,
+    load_results,
+    overwrite_option,
+    results_argument,
+)
 from railhunt.cli.output import fmt, json_safe, stdout_console
 from railhunt.cli.rules import command
 
@@ -27,8 +33,9 @@ def _share(value: float) -> str:
 @file_option("--csv", "csv_file", "Write one row per parameter and section (SI and display "
              "units, km/h, Hz, shares).")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON on stdout.")
+@overwrite_option
 def sections_command(results: Path, png_file: Path | None, csv_file: Path | None,
-                     as_json: bool) -> None:  # fmt: skip
+                     as_json: bool, overwrite: bool) -> None:  # fmt: skip
     """Change of critical speed and frequency per Table 1 section (Fig. 12).
 
     \b
@@ -48,7 +55,7 @@ def sections_command(results: Path, png_file: Path | None, csv_file: Path | None
     Points without a number are skipped and reported. Prints a table with each
     section's share of the parameter's total; --png draws Fig. 12.
     """
-    check_outputs(png=png_file, csv=csv_file)
+    check_outputs(overwrite=overwrite, png=png_file, csv=csv_file)
     from railhunt import section_changes
 
     table = load_results(results, section_changes)

@@ -8,7 +8,7 @@ from pathlib import Path
 import click
 
 from railhunt.cli.errors import CliError, user_input
-from railhunt.cli.options import check_outputs, file_option, number_range
+from railhunt.cli.options import check_outputs, file_option, number_range, overwrite_option
 from railhunt.cli.output import json_safe, stdout_console
 from railhunt.cli.rules import Ordered, command
 
@@ -56,6 +56,7 @@ RULES = (
 @file_option("--png", "png_file",
              "Draw the STFT amplitude map (time vs frequency, like the paper's Fig. 9a).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of a table.")
+@overwrite_option
 def spectrogram_command(
     csv_file: Path,
     channel: str,
@@ -64,6 +65,7 @@ def spectrogram_command(
     fmax: float | None,
     png_file: Path | None,
     as_json: bool,
+    overwrite: bool,
 ) -> None:
     """Short-time Fourier transform of one channel of a CSV record.
 
@@ -81,7 +83,7 @@ def spectrogram_command(
     steady band at the hunting frequency (a few Hz); after a yaw damper blows
     off it jumps higher (the paper's Fig. 8-9).
     """
-    check_outputs(png=png_file)
+    check_outputs(overwrite=overwrite, png=png_file)
     if not csv_file.exists():
         raise CliError(f"FILE.csv {csv_file}: no such file")
     from railhunt.analysis.spectrogram import (

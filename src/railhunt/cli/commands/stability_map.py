@@ -13,7 +13,6 @@ from railhunt.cli.errors import CliError, user_input
 from railhunt.cli.options import (
     build_vehicle,
     cant_option,
-    check_outputs,
     file_option,
     number_range,
     vehicle_options,
@@ -22,6 +21,7 @@ from railhunt.cli.output import fmt, json_safe, show_progress, stdout_console
 from railhunt.cli.rules import Excludes, command
 from railhunt.cli.study import (
     STUDY_RULES,
+    check_study_outputs,
     check_workers_option,
     optional_out_rules,
     report_lost,
@@ -117,7 +117,7 @@ def stability_map_command(radii: list[float], cant_mm: float | None,
     chosen = tuple(dict.fromkeys(o.strip() for o in outputs.split(",") if o.strip()))
     if not chosen or any(o not in MAP_OUTPUTS for o in chosen):
         raise CliError(f"--outputs {outputs}: choose from {', '.join(MAP_OUTPUTS)}")
-    check_outputs(png=png_file, csv=csv_file, out=out)
+    check_study_outputs(out, resume, overwrite, png=png_file, csv=csv_file)
     vehicle = build_vehicle(vehicle_file, sets)
 
     from railhunt import stability_map

@@ -9,11 +9,12 @@ from pathlib import Path
 import click
 
 from railhunt.cli.errors import CliError, user_input
-from railhunt.cli.options import build_vehicle, check_outputs, number_range, vehicle_options
+from railhunt.cli.options import build_vehicle, number_range, vehicle_options
 from railhunt.cli.output import fmt, json_safe, show_progress, stdout_console
 from railhunt.cli.rules import Excludes, Requires, command
 from railhunt.cli.study import (
     STUDY_RULES,
+    check_study_outputs,
     check_workers_option,
     report_lost,
     running_study,
@@ -183,7 +184,7 @@ def sweep_command(names, table1, per_section, froms, tos, nums, spacing, design,
     bad = [o for o in chosen if o not in OUTPUTS]
     if bad or not chosen:
         raise CliError(f"--outputs {outputs}: choose from {', '.join(OUTPUTS)}")
-    check_outputs(out=out)
+    check_study_outputs(out, resume, overwrite)
     vehicle = build_vehicle(vehicle_file, sets)
     if table1:
         from railhunt import table1_study
