@@ -91,10 +91,10 @@ class Workload:
 
 
 def duration_text(seconds: float) -> str:
-    """``"45 s"``, ``"3 min"``, ``"2.5 h"`` or ``"4 days"``."""
+    """``"45 s"`` (below 2 min), ``"3 min"``, ``"2.5 h"`` or ``"4 days"``."""
     if not math.isfinite(seconds):
         return "forever"
-    if seconds < 90:
+    if seconds < 120:
         return f"{seconds:.0f} s"
     if seconds < 5400:
         return f"{seconds / 60:.0f} min"

@@ -84,7 +84,7 @@ def fig6(ctx: Context) -> Step:
 def fig7(ctx: Context) -> Step:
     """Fig. 7: (a) the bifurcation diagram, (b) the hunting frequency and its jump."""
     from railhunt.analysis.continuation import bifurcation_diagram
-    from railhunt.analysis.frequency import frequency_jump, hunting_frequency
+    from railhunt.analysis.frequency import frequency_jump, frequency_kind, hunting_frequency
     from railhunt.model import Model
     from railhunt.plots import plot_bifurcation, plot_hunting_frequency
 
@@ -121,7 +121,7 @@ def fig7(ctx: Context) -> Step:
                 above = r
         speeds = np.array(sorted(points))
     freqs = np.array([points[v].frequency_hz for v in speeds])
-    sources = [points[v].source for v in speeds]
+    sources = [frequency_kind(points[v].source) for v in speeds]
     step.figures.append(plot_hunting_frequency(speeds, freqs, sources, ctx.out_dir / "fig7b.png",
                                                s.initial_amplitude))  # fmt: skip
     ctx.shared["jump"] = (below, above)

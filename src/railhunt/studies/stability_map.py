@@ -19,7 +19,13 @@ from typing import Any
 import numpy as np
 
 from railhunt.curve import Curve, fixed_deficiency
-from railhunt.studies.execute import check_workers, progress_bar, run_tasks
+from railhunt.studies.execute import (
+    CONNECT_TIMEOUT,
+    check_connect_timeout,
+    check_workers,
+    progress_bar,
+    run_tasks,
+)
 from railhunt.studies.store import (
     STATUS_FAILED,
     STATUS_NO_CRITICAL_SPEED,
@@ -131,6 +137,7 @@ def stability_map(
     scheduler: str | None = None,
     workers: int | None = None,
     progress: bool | Callable[[int, int], None] = False,
+    connect_timeout: float = CONNECT_TIMEOUT,
 ) -> SweepResults:
     """Linear and nonlinear critical speed of a vehicle in curves of several radii.
 
@@ -157,6 +164,8 @@ def stability_map(
     out, resume, overwrite, client, scheduler, workers, progress
         As for :func:`railhunt.sweep`: results file (CSV or Parquet) written as radii
         finish, resumable; Dask cluster or local workers; progress bar or callback.
+    connect_timeout : float
+        As for :func:`railhunt.sweep`: how long to try to reach ``scheduler`` (s).
 
     Returns
     -------
@@ -178,6 +187,7 @@ def stability_map(
         fixed_deficiency(1000.0, cant_deficiency, direction)
     if client is None and scheduler is None:
         check_workers(workers)
+    check_connect_timeout(connect_timeout)
     if excitation is None:
         excitation = SingleDefect()
     param_cols = ["radius_m", "cant_m" if cant_deficiency is None else "cant_deficiency_m"]
@@ -211,7 +221,8 @@ def stability_map(
     lost: list[tuple[Any, str]] = []
     try:
         lost = run_tasks(task, todo, on_result, client=client, scheduler=scheduler,
-                         workers=workers, warm_up=_warm_up if todo else None)  # fmt: skip
+                         workers=workers, connect_timeout=connect_timeout,
+                         warm_up=_warm_up if todo else None)  # fmt: skip
         complete = len(rows) == len(radii)
     finally:
         if bar is not None:

@@ -19,7 +19,13 @@ from typing import Any
 import numpy as np
 
 from railhunt.studies.design import Point, build_design, frequency_speed, parse_ties
-from railhunt.studies.execute import check_workers, progress_bar, run_tasks
+from railhunt.studies.execute import (
+    CONNECT_TIMEOUT,
+    check_connect_timeout,
+    check_workers,
+    progress_bar,
+    run_tasks,
+)
 from railhunt.studies.store import (
     OUTPUTS,
     STATUS_FAILED,
@@ -181,6 +187,7 @@ def sweep(
     scheduler: str | None = None,
     workers: int | None = None,
     progress: bool | Callable[[int, int], None] = False,
+    connect_timeout: float = CONNECT_TIMEOUT,
 ) -> SweepResults:
     """Run a parameter study: critical speeds and hunting frequency at every point.
 
@@ -228,6 +235,10 @@ def sweep(
         Run on this Dask cluster.
     scheduler : str, optional
         Address of a Dask scheduler to join.
+    connect_timeout : float
+        How long to try to reach ``scheduler`` (s), in (0, 3600]; a refused port, a
+        server that is not a Dask scheduler or no answer in time raise
+        :class:`railhunt.studies.execute.SchedulerError` (an ``OSError``).
     workers : int, optional
         Worker processes of the local cluster (default: all cores; 1 runs in this process).
     progress : bool or callable
@@ -250,6 +261,7 @@ def sweep(
                          "be in (0, 1000] km/h")  # fmt: skip
     if client is None and scheduler is None:
         check_workers(workers)
+    check_connect_timeout(connect_timeout)
     if frequency_amplitude is not None and not (math.isfinite(frequency_amplitude)
                                                 and 0 < frequency_amplitude <= 0.02):  # fmt: skip
         raise ValueError(f"frequency_amplitude = {frequency_amplitude!r} m is invalid: must be "
@@ -293,7 +305,8 @@ def sweep(
     complete = False
     try:
         lost = run_tasks(task, todo, on_result, client=client, scheduler=scheduler,
-                         workers=workers, warm_up=warm_up if todo else None)  # fmt: skip
+                         workers=workers, connect_timeout=connect_timeout,
+                         warm_up=warm_up if todo else None)  # fmt: skip
         complete = len(rows) == len(points)
     finally:
         if bar is not None:

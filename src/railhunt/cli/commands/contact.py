@@ -9,8 +9,8 @@ from pathlib import Path
 import click
 
 from railhunt.cli.errors import CliError, user_input
-from railhunt.cli.options import check_outputs, number_range, overwrite_option
-from railhunt.cli.output import json_safe
+from railhunt.cli.options import check_outputs, number_range, overwrite_option, write_sidecar
+from railhunt.cli.output import command_record, json_safe, traced
 from railhunt.cli.rules import Ordered, command
 
 _INCLINATIONS = {"1:40": 1.0 / 40.0, "1:20": 1.0 / 20.0, "none": 0.0, "0": 0.0}
@@ -134,6 +134,8 @@ def contact_command(
             np.savetxt(csv_file, table, delimiter=",", fmt="%.9g", comments="",
                        header="y_mm,r_left_mm,r_right_mm,delta_r_mm,delta_left_rad,"
                               "delta_right_rad,roll_mrad,wheel_left_mm,wheel_right_mm,jump")
+            write_sidecar(csv_file, traced({"wheel": w.name, "rail": r.name}),
+                          **command_record())  # fmt: skip
     if png_file is not None:
         from railhunt.plots import plot_contact_geometry
 
@@ -149,7 +151,7 @@ def contact_command(
             "r_right_m": geo.r_right.tolist(), "delta_left_rad": geo.delta_left.tolist(),
             "delta_right_rad": geo.delta_right.tolist(), "roll_rad": geo.roll.tolist(),
         }
-        click.echo(json.dumps(json_safe(data)))
+        click.echo(json.dumps(json_safe(traced(data))))
         return
     i0 = int(abs(geo.y).argmin())
     click.echo(f"{w.name} on {r.name}, inclination {inclination:.4g}, gauge {gauge:g} mm, "

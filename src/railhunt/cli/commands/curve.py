@@ -25,7 +25,7 @@ from railhunt.cli.options import (
     transition_option,
     vehicle_options,
 )
-from railhunt.cli.output import fmt, json_safe, spinner, stdout_console
+from railhunt.cli.output import announce, fmt, json_safe, spinner, stdout_console, traced
 from railhunt.cli.rules import command
 
 #: Track (m) the curve-entry run of ``--png`` covers past the end of the entry transition,
@@ -92,7 +92,7 @@ def curve_command(radius: float, cant_mm: float | None, speed: float, transition
                     balance_speed_kmh=_balance_kmh(curve, vehicle))  # fmt: skip
         if entry is not None:
             data["curve_entry"] = entry
-        click.echo(json.dumps(json_safe(data), indent=1))
+        click.echo(json.dumps(json_safe(traced(data, vehicle)), indent=1))
         return
     _print_state(state, vehicle, curve)
     if entry is not None:
@@ -119,6 +119,13 @@ def _curve_entry(vehicle: Any, speed: float, curve: Any, png_file: Path) -> dict
 
     length = curve.start + curve.transition + 2 * (vehicle.l + vehicle.l1) + ENTRY_SETTLE
     duration = length / kmh_to_ms(speed)
+    from railhunt import Model
+    from railhunt.simulation import auto_step
+    from railhunt.workload import workload
+
+    with user_input("--set/--vehicle: "):
+        step = auto_step(Model(vehicle), kmh_to_ms(speed))
+    announce(workload(duration, step, f"the curve entry, {duration:.1f} s simulated"))
     with spinner(f"simulating the curve entry ({duration:.1f} s) ..."), user_input():
         run = simulate(vehicle, speed, duration=duration, curve=curve)
     with spinner("plotting ..."), user_input("cannot write --png: "):

@@ -15,8 +15,9 @@ from railhunt.cli.options import (
     overwrite_option,
     speed_count,
     vehicle_options,
+    write_sidecar,
 )
-from railhunt.cli.output import linear_critical_speed_line, spinner, stdout_console
+from railhunt.cli.output import command_record, linear_critical_speed_line, spinner, stdout_console
 from railhunt.cli.rules import command
 
 
@@ -94,6 +95,10 @@ def eigen_command(
         )
         with user_input("cannot write --csv: "):
             np.savetxt(csv_file, data, delimiter=",", header=header, comments="", fmt="%.9g")
+            from railhunt.provenance import provenance
+
+            write_sidecar(csv_file, provenance(vehicle), **command_record(),
+                          columns=header.split(","))  # fmt: skip
         click.echo(f"csv: {csv_file}")
     if png_file is not None:
         from railhunt.plots import plot_root_locus

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import click
 
+from railhunt.cli.errors import user_input
 from railhunt.cli.options import (
     build_vehicle,
     check_outputs,
@@ -17,7 +18,7 @@ from railhunt.cli.options import (
     speed_count,
     vehicle_options,
 )
-from railhunt.cli.output import fmt, json_safe, spinner, stdout_console
+from railhunt.cli.output import announce, fmt, json_safe, spinner, stdout_console, traced
 from railhunt.cli.rules import command
 
 
@@ -53,16 +54,22 @@ def frequency_command(from_kmh: float, to_kmh: float, step_kmh: float, initial_m
     import numpy as np
 
     from railhunt import Model, hunting_frequency
-    from railhunt.analysis.frequency import frequency_jump
+    from railhunt.analysis.frequency import frequency_jump, frequency_kind
+    from railhunt.simulation import auto_step
+    from railhunt.units import kmh_to_ms
+    from railhunt.workload import SIMULATED_SECONDS, workload
 
     model = Model(vehicle)
+    with user_input("--set/--vehicle: "):
+        dt = auto_step(model, kmh_to_ms(to_kmh))
+    announce(workload(n * SIMULATED_SECONDS["frequency speed"], dt, f"{n} speeds"))
     speeds = from_kmh + step_kmh * np.arange(n)
     results = []
     with spinner("simulating speeds"):
         for s in speeds:
             results.append(hunting_frequency(vehicle, float(s), initial_mm * 1e-3, model=model))
     freqs = np.array([r.frequency_hz for r in results])
-    sources = [r.source for r in results]
+    sources = [frequency_kind(r.source) for r in results]
     jump = frequency_jump(speeds, freqs, sources)
     if png_file is not None:
         from railhunt.plots import plot_hunting_frequency
@@ -71,7 +78,8 @@ def frequency_command(from_kmh: float, to_kmh: float, step_kmh: float, initial_m
     if damper_png is not None:
         from railhunt.plots import plot_damper_velocity
 
-        pick = next((r for r in results if r.source == "limit-cycle"), results[-1])
+        pick = next((r for r in results if frequency_kind(r.source) == "limit-cycle"),
+                    results[-1])  # fmt: skip
         plot_damper_velocity(pick.t, pick.y, pick.damper_velocity, pick.blowoff_velocity,
                              damper_png, f"{pick.speed_kmh:g} km/h, {pick.verdict}")  # fmt: skip
     if as_json:
@@ -82,7 +90,7 @@ def frequency_command(from_kmh: float, to_kmh: float, step_kmh: float, initial_m
                                                "to_hz": jump[2]},
             "points": [r.to_dict() for r in results],
         }  # fmt: skip
-        click.echo(json.dumps(json_safe(data), indent=2))
+        click.echo(json.dumps(json_safe(traced(data, vehicle)), indent=2))
         return
     from rich.table import Table
 

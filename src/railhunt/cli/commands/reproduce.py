@@ -13,29 +13,29 @@ from railhunt.cli.errors import CliError
 from railhunt.cli.options import check_output_folder, overwrite_option
 from railhunt.cli.output import show_progress, spinner, stdout_console
 from railhunt.cli.rules import Excludes, command
+from railhunt.cli.study import CONNECT_RULE, connect_timeout_option, scheduler_client
 
-RULES = (Excludes("--scheduler", "--workers", "give either {a} or {b}, not both"),)
+RULES = (Excludes("--scheduler", "--workers", "give either {a} or {b}, not both"),
+         CONNECT_RULE)
 
 
 @contextlib.contextmanager
-def _dask_client(scheduler: str | None, workers: int | None) -> Iterator[Any]:
+def _dask_client(scheduler: str | None, workers: int | None,
+                 connect_timeout: float) -> Iterator[Any]:  # fmt: skip
     """A Dask client: joined to ``scheduler``, or a new local cluster of ``workers`` processes.
 
     Yields None (everything runs in this process) for ``--workers 1``.
     """
-    if scheduler is None and workers == 1:
+    if scheduler is not None:
+        with scheduler_client(scheduler, connect_timeout) as client:
+            yield client
+        return
+    if workers == 1:
         yield None
         return
-    from railhunt.studies.execute import check_workers, open_client
+    from railhunt.studies.execute import check_workers, local_client
 
-    with contextlib.ExitStack() as stack:
-        try:
-            client = stack.enter_context(open_client(scheduler, check_workers(workers),
-                                                     timeout="10s"))  # fmt: skip
-        except OSError as exc:
-            if scheduler is None:  # a local cluster that fails to start: not an input error
-                raise
-            raise CliError(f"--scheduler {scheduler}: cannot connect ({exc})") from None
+    with local_client(check_workers(workers)) as client:
         yield client
 
 
@@ -61,6 +61,23 @@ def _step_progress() -> Iterator[Callable[[str, str], None] | None]:
                             description=f"{title}: [{style}]{state}[/{style}]")  # fmt: skip
 
         yield update
+
+
+def _announce(quick: bool, client: Any) -> None:
+    """Announce a reproduction of more than a minute (measured times, shared by the
+    client's workers)."""
+    from railhunt.cli.output import announce
+    from railhunt.workload import SIMULATED_SECONDS, workload
+
+    n = 1
+    if client is not None:
+        try:
+            n = max(1, len(client.scheduler_info().get("workers", {})))
+        except Exception:  # noqa: BLE001 - only for the estimate
+            n = 1
+    key = "reproduce quick" if quick else "reproduce"
+    announce(workload(SIMULATED_SECONDS[key], 1e-3, "the paper's figures, measured",
+                      workers=n))  # fmt: skip
 
 
 def _with_unit(value: object, text: str, unit: str) -> str:
@@ -91,9 +108,11 @@ def _difference_style(agrees: bool | None) -> str:
 @click.option("--workers", type=click.IntRange(min=1, max=256), metavar="N",
               help="Worker processes of the local Dask cluster (default: one per core; 1: "
               "no cluster, everything in this process).")  # fmt: skip
+@connect_timeout_option(default=10.0)
 @overwrite_option
 def reproduce_command(out_dir: Path, quick: bool, scheduler: str | None,
-                      workers: int | None, overwrite: bool) -> None:  # fmt: skip
+                      workers: int | None, connect_timeout: float,
+                      overwrite: bool) -> None:  # fmt: skip
     """Recompute the paper's Figs. 6, 7, 8, 10-13 for its vehicle and compare its numbers.
 
     \b
@@ -129,7 +148,8 @@ def reproduce_command(out_dir: Path, quick: bool, scheduler: str | None,
         warm_up()
     stack = contextlib.ExitStack()
     with spinner("starting Dask workers"):
-        client = stack.enter_context(_dask_client(scheduler, workers))
+        client = stack.enter_context(_dask_client(scheduler, workers, connect_timeout))
+    _announce(quick, client)
     with stack, _step_progress() as progress:
         report = reproduce(out_dir, quick=quick, client=client, progress=progress,
                            vehicle=vehicle)  # fmt: skip

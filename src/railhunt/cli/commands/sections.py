@@ -10,15 +10,16 @@ from typing import Any
 
 import click
 
-from railhunt.cli.errors import CliError
+from railhunt.cli.errors import CliError, user_input
 from railhunt.cli.options import (
     check_outputs,
     file_option,
     load_results,
     overwrite_option,
     results_argument,
+    write_sidecar,
 )
-from railhunt.cli.output import fmt, json_safe, stdout_console
+from railhunt.cli.output import command_record, fmt, json_safe, stdout_console, traced
 from railhunt.cli.rules import command
 
 
@@ -66,12 +67,16 @@ def sections_command(results: Path, png_file: Path | None, csv_file: Path | None
             plot_sections(table, png_file)
         except OSError as exc:
             raise CliError(f"cannot write --png {png_file}: {exc.strerror or exc}") from None
+    source = results_provenance(results)
     if csv_file is not None:
         _write_sections_csv(table, csv_file)
+        with user_input("cannot write --csv: "):
+            write_sidecar(csv_file, traced({"source": source}), **command_record())
     if as_json:
         data = table.to_dict()
         data["results"] = str(results)
-        click.echo(json.dumps(json_safe(data), indent=2))
+        data["source"] = source
+        click.echo(json.dumps(json_safe(traced(data)), indent=2))
         return
     from rich.table import Table
 
@@ -108,6 +113,21 @@ def sections_command(results: Path, png_file: Path | None, csv_file: Path | None
     for f in (png_file, csv_file):
         if f is not None:
             out.print(f"wrote {f}")
+
+
+def results_provenance(results: Path) -> dict[str, Any]:
+    """The provenance of a study's results file, from its sidecar ``<file>.sweep.json``
+    (the railhunt version that computed it, the vehicle's name and fingerprint; files
+    written before the sidecar held them give what it has)."""
+    from railhunt.studies.store import sidecar_path
+
+    try:
+        meta = json.loads(sidecar_path(results).read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return {}
+    if isinstance(meta.get("provenance"), dict):
+        return meta["provenance"]
+    return {"railhunt_version": meta.get("railhunt")} if "railhunt" in meta else {}
 
 
 def _write_sections_csv(table: Any, path: Path) -> None:

@@ -9,7 +9,7 @@ import click
 
 from railhunt.cli.errors import CliError, user_input
 from railhunt.cli.options import check_outputs, file_option, number_range, overwrite_option
-from railhunt.cli.output import json_safe, stdout_console
+from railhunt.cli.output import json_safe, stdout_console, traced
 from railhunt.cli.rules import Ordered, command
 
 RULES = (
@@ -112,7 +112,7 @@ def spectrogram_command(
                 for b in bands
             ],  # fmt: skip
         }
-        click.echo(json.dumps(json_safe(data), allow_nan=False))
+        click.echo(json.dumps(json_safe(_with_source(traced(data), csv_file)), allow_nan=False))
     else:
         from rich.markup import escape
         from rich.table import Table
@@ -139,3 +139,17 @@ def spectrogram_command(
                              fmax=fmax)  # fmt: skip
         if not as_json:
             click.echo(f"png: {png_file}")
+
+
+def _with_source(data: dict, csv_file: Path) -> dict:
+    """``data`` with the provenance of the record analysed (``source``): the metadata
+    sidecar ``FILE.csv.meta.json`` that 'railhunt simulate --csv' writes, if there is one."""
+    from railhunt.cli.files import sidecar_path
+
+    side = sidecar_path(csv_file)
+    try:
+        meta = json.loads(side.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return data
+    keep = ("railhunt_version", "vehicle", "vehicle_fingerprint", "command")
+    return {**data, "source": {k: meta[k] for k in keep if k in meta}}
