@@ -237,16 +237,28 @@ def hunting_frequency(
                                 math.nan, math.nan, t, y, vd, v_u)  # fmt: skip
     f_fft, f_orbit = math.nan, math.nan
     if code == 0:
-        # Resample the end of the record to a fixed step (the paper's linear interpolation).
-        t_end = t[-1]
-        t_fix = np.arange(max(t[0], t_end - fft_window), t_end, 1.0 / sample_rate)
-        f_fft, _, _ = dominant_frequency(np.interp(t_fix, t, y), 1.0 / sample_rate)
-        amp = float(np.max(np.abs(y[t >= t_end - 2.0])))
+        f_fft, amp = _spectrum_peak(t, y, fft_window, sample_rate)
         rejected = "not refined (refine=False)" if refine else "the FFT found no peak"
         if refine and math.isfinite(f_fft) and f_fft > 0:
             orbit, rejected = _refine_orbit(model, speed_kmh, t, x, dt, f_fft, amp)
+            extended = 0.0
+            while orbit is None and extended < REFINE_EXTENSION:
+                # Not yet close enough to the cycle for Newton: run on, and shoot again.
+                tt, xx, more, _ = integrate_model(model, speed, REFINE_CHUNK, x[-1],
+                                                  t0=float(t[-1]), excitation=excitation,
+                                                  dt=dt, output_dt=2e-3)  # fmt: skip
+                if more != 0:
+                    break
+                t, x = np.concatenate([t, tt[1:]]), np.concatenate([x, xx[1:]])
+                extended += REFINE_CHUNK
+                f_fft, amp = _spectrum_peak(t, x[:, Y_W1], fft_window, sample_rate)
+                orbit, _ = _refine_orbit(model, speed_kmh, t, x, dt, f_fft, amp)
             if orbit is not None:
-                f_orbit, amp = orbit.frequency_hz, orbit.amplitude
+                f_orbit, amp, rejected = orbit.frequency_hz, orbit.amplitude, ""
+            elif extended:
+                rejected += f" (and again after running {extended:g} s longer)"
+        y = x[:, Y_W1]
+        vd = model.damper_velocities(x[:, FORCES])
         f, source = (f_orbit, "limit-cycle") if math.isfinite(f_orbit) else (f_fft,
                                                                               "limit-cycle-fft")
         return HuntingFrequency(speed_kmh, f, source, HUNTING, amp, f_eig, zeta, f_fft,
@@ -254,6 +266,21 @@ def hunting_frequency(
     # The run left the track (derailment limit) or diverged: no frequency.
     return HuntingFrequency(speed_kmh, math.nan, "limit-exceeded", HUNTING, math.nan, f_eig,
                             zeta, math.nan, math.nan, t, y, vd, v_u)  # fmt: skip
+
+
+#: When shooting from the end of a run fails, the run goes on in chunks of this many
+#: seconds, up to this many in all, and shooting is tried again after each (s).
+REFINE_CHUNK, REFINE_EXTENSION = 5.0, 10.0
+
+
+def _spectrum_peak(t: np.ndarray, y: np.ndarray, window: float,
+                   rate: float) -> tuple[float, float]:  # fmt: skip
+    """The FFT's peak frequency of the last ``window`` s of ``y`` (Hz), resampled to ``rate``
+    (Hz) by linear interpolation (the paper's), and the largest ``|y|`` of the last 2 s."""
+    t_end = t[-1]
+    t_fix = np.arange(max(t[0], t_end - window), t_end, 1.0 / rate)
+    f_fft, _, _ = dominant_frequency(np.interp(t_fix, t, y), 1.0 / rate)
+    return f_fft, float(np.max(np.abs(y[t >= t_end - 2.0])))
 
 
 def _extremum_state(model: Model, speed_kmh: float, t: np.ndarray, x: np.ndarray, k: int,
