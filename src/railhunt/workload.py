@@ -14,12 +14,17 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-__all__ = ["NOTICE_SECONDS", "SECONDS_PER_STEP", "SIMULATED_SECONDS", "Workload", "workload"]
+__all__ = ["NOTICE_SECONDS", "SECONDS_PER_CONTACT_POSITION", "SECONDS_PER_STEP",
+           "SIMULATED_SECONDS", "Workload", "contact_workload", "workload"]  # fmt: skip
 
 #: Wall time of one RK4 step of the 17-DOF model with its bookkeeping (s): measured on the
 #: 2-core reference machine, 2.5 us in the critical-speed search (59 s simulated at 1 ms in
 #: 0.147 s) and 5.4 us in ``simulate`` storing every step with its derived channels.
 SECONDS_PER_STEP = 3e-6
+
+#: Wall time of the rigid contact search at one lateral position (s): 2401 positions of
+#: S1002 on UIC60 took 4.3 s on the reference machine (``railhunt contact --step 0.01``).
+SECONDS_PER_CONTACT_POSITION = 1.8e-3
 
 #: Estimated work above which the command line says so before it starts (s).
 NOTICE_SECONDS = 60.0
@@ -56,6 +61,10 @@ class Workload:
         Processes sharing the steps.
     most_steps : float or None
         Steps when every part runs as long as it may (None: unknown).
+    per_step : float
+        Wall time of one step (s).
+    unit : str or None
+        What a step is, in :meth:`describe` (default: ``"RK4 steps of <dt> s"``).
     """
 
     steps: float
@@ -63,17 +72,19 @@ class Workload:
     what: str
     workers: int = 1
     most_steps: float | None = None
+    per_step: float = SECONDS_PER_STEP
+    unit: str | None = None
 
     @property
     def seconds(self) -> float:
         """Estimated wall time (s)."""
-        return self.steps * SECONDS_PER_STEP / max(1, self.workers)
+        return self.steps * self.per_step / max(1, self.workers)
 
     @property
     def most_seconds(self) -> float:
         """Wall time when every part takes as long as it may (s); ``seconds`` if unknown."""
         steps = self.steps if self.most_steps is None else max(self.steps, self.most_steps)
-        return steps * SECONDS_PER_STEP / max(1, self.workers)
+        return steps * self.per_step / max(1, self.workers)
 
     @property
     def notable(self) -> bool:
@@ -86,8 +97,9 @@ class Workload:
         on = f" on {self.workers} workers" if self.workers > 1 else ""
         most = self.most_seconds
         upto = f", up to {duration_text(most)}" if most > 1.5 * self.seconds else ""
-        return (f"about {duration_text(self.seconds)}{upto}{on} ({self.steps:.2g} RK4 steps "
-                f"of {self.dt:.2g} s: {self.what})")  # fmt: skip
+        unit = self.unit or f"RK4 steps of {self.dt:.2g} s"
+        return (f"about {duration_text(self.seconds)}{upto}{on} ({self.steps:.2g} {unit}: "
+                f"{self.what})")  # fmt: skip
 
 
 def duration_text(seconds: float) -> str:
@@ -122,3 +134,9 @@ def workload(simulated: float, dt: float, what: str, workers: int = 1,
     """
     most = None if most_simulated is None else most_simulated / dt
     return Workload(simulated / dt, dt, what, workers, most)
+
+
+def contact_workload(positions: int, what: str) -> Workload:
+    """The work of the rigid contact search at ``positions`` lateral positions."""
+    return Workload(float(positions), math.nan, what, per_step=SECONDS_PER_CONTACT_POSITION,
+                    unit="contact positions")

@@ -10,7 +10,7 @@ import click
 
 from railhunt.cli.errors import CliError, user_input
 from railhunt.cli.options import check_outputs, number_range, overwrite_option, write_sidecar
-from railhunt.cli.output import command_record, json_safe, traced
+from railhunt.cli.output import announce, command_record, json_safe, traced
 from railhunt.cli.rules import Ordered, command
 
 _INCLINATIONS = {"1:40": 1.0 / 40.0, "1:20": 1.0 / 20.0, "none": 0.0, "0": 0.0}
@@ -109,6 +109,10 @@ def contact_command(
         w = s1002(step=1e-5) if wheel.upper() == "S1002" else read_profile(wheel, "wheel")
     with user_input("--rail: "):
         r = uic60(0.0, step=1e-5) if rail.upper() == "UIC60" else read_profile(rail, "rail")
+    from railhunt.workload import contact_workload
+
+    positions = 2 * int(round(y_max / y_step)) + 1
+    announce(contact_workload(positions, f"±{y_max:g} mm in steps of {y_step:g} mm"))
     with user_input():
         geo = contact_geometry(
             w, r, rail_inclination=inclination, gauge=gauge * 1e-3,
