@@ -303,3 +303,19 @@ def test_stability_in_a_curve_moves_with_the_cant_deficiency() -> None:
     above = curving(PAPER, lin.speed_kmh + 5, curve)
     assert below.stable and not above.stable
     assert 2.0 < lin.frequency_hz < 3.0
+
+
+def test_vehicle_files_written_before_the_bump_stop_still_load(tmp_path) -> None:
+    # A complete vehicle file without the three bump-stop parameters (as every file
+    # written before they existed) loads with their defaults, and gives the same model.
+    import re
+
+    path = tmp_path / "old.toml"
+    PAPER.to_toml(path)
+    text = path.read_text(encoding="utf-8")
+    old = re.sub(r"\[parameters\.(y_bs|K_bs|K_bs3)\]\n(?:[a-z]+ = .*\n)+\n?", "", text)
+    assert "y_bs" not in old and "K_bs" not in old
+    path.write_text(old, encoding="utf-8")
+    v = railhunt.load_vehicle(path)
+    assert (v.y_bs, v.K_bs, v.K_bs3) == (0.030, 1.0e6, 5.0e9)
+    assert v.as_dict() == PAPER.as_dict()

@@ -296,12 +296,12 @@ def test_torn_sidecar_is_tolerated_by_readers(tmp_path):
 def test_unreachable_scheduler_leaves_no_stub(tmp_path, monkeypatch):
     """A study that fails before its first point (here: the scheduler cannot be reached,
     which Dask reports after its 30 s connect timeout) leaves no file to 'resume'."""
-    import railhunt.studies.sweep as sweep_module
+    import railhunt.studies.runner as runner_module  # the study loop sweep runs on
 
     def unreachable(*args, **kwargs):
         raise OSError("Timed out trying to connect to tcp://10.0.0.5:8786 after 30 s")
 
-    monkeypatch.setattr(sweep_module, "run_tasks", unreachable)
+    monkeypatch.setattr(runner_module, "run_tasks", unreachable)
     out = tmp_path / "s.csv"
     with pytest.raises(OSError, match="Timed out"):
         sweep(VEHICLE, {"mu": [0.2]}, LINEAR, scheduler="tcp://10.0.0.5:8786", out=out)

@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from railhunt.analysis.modes import hunting_mode_index, sorted_eig
+from railhunt.analysis.newton import newton
 from railhunt.curve import Curve
 from railhunt.kernel.bumpstop import bump_stop_force
 from railhunt.kernel.layout import (
@@ -88,34 +89,25 @@ def equilibrium(
     x[RATE0:FORCE0] = 0.0
     out = np.empty(N_STATE)
 
-    def residual(state: np.ndarray) -> np.ndarray:
-        rhs(0.0, state, v, system, out)
+    def state_of(z: np.ndarray) -> np.ndarray:
+        state = x.copy()
+        state[_UNKNOWNS] = z
+        return state
+
+    def residual(z: np.ndarray) -> np.ndarray:
+        rhs(0.0, state_of(z), v, system, out)
         return out[_EQUATIONS] / _EQ_SCALE
 
-    r = residual(x)
-    norm = float(np.max(np.abs(r)))
-    for it in range(max_iter + 1):
-        if norm < tol:
-            return x, norm, it
-        if it == max_iter or not math.isfinite(norm):
-            break
-        jac = model.jacobian(speed, x, route=route)[np.ix_(_EQUATIONS, _UNKNOWNS)]
-        try:
-            step = np.linalg.solve(jac, -r * _EQ_SCALE)
-        except np.linalg.LinAlgError:
-            break
-        lam = 1.0
-        for _ in range(12):
-            trial = x.copy()
-            trial[_UNKNOWNS] += lam * step
-            rt = residual(trial)
-            nt = float(np.max(np.abs(rt)))
-            if math.isfinite(nt) and nt < norm:
-                break
-            lam *= 0.5
-        else:
-            break
-        x, r, norm = trial, rt, nt
+    def jacobian(z: np.ndarray, r: np.ndarray) -> np.ndarray:
+        jac = model.jacobian(speed, state_of(z), route=route)
+        return jac[np.ix_(_EQUATIONS, _UNKNOWNS)] / _EQ_SCALE[:, None]
+
+    # Up to 12 halvings: from the centred state a tight curve's first steps overshoot the
+    # flange (the contact angle steepens sharply there).
+    z, norm, iterations, converged, _ = newton(residual, jacobian, x[_UNKNOWNS], tol=tol,
+                                               max_iter=max_iter, halvings=12)  # fmt: skip
+    if converged:
+        return state_of(z), norm, iterations
     raise CurvingError(
         f"no steady-curving equilibrium found at {ms_to_kmh(speed):.1f} km/h "
         f"(scaled residual {norm:.2e} after Newton's method)"

@@ -268,26 +268,14 @@ def dominant_bands(
 
 def plot_spectrogram(
     spec: Spectrogram, path: str | os.PathLike[str], title: str = "", unit: str = "",
-    bands: list[Band] | None = None, fmax: float | None = None,
+    bands: list[Band] | None = None, fmax: float | None = None, *, full_range: bool = False,
 ) -> Path:  # fmt: skip
-    """Draw the STFT amplitude map (like the paper's Fig. 9(a)) to a PNG file."""
-    import matplotlib
+    """Draw the STFT amplitude map to a file: :func:`railhunt.plots.plot_spectrogram`.
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    Kept here for existing callers; the figure lives with the others in
+    :mod:`railhunt.plots.spectrogram` (viridis, 0-20 Hz by default, a legend for the
+    dominant bands).
+    """
+    from railhunt.plots.spectrogram import plot_spectrogram as plot
 
-    path = Path(path)
-    fig, ax = plt.subplots(figsize=(9, 4.5), layout="constrained")
-    mesh = ax.pcolormesh(spec.times, spec.frequencies, spec.amplitude, shading="nearest",
-                         cmap="jet")  # fmt: skip
-    fig.colorbar(mesh, ax=ax, label=f"amplitude{f' ({unit})' if unit else ''}")
-    for b in bands or []:
-        ax.plot([b.start, b.end], [b.frequency, b.frequency], color="white", lw=1.5, ls="--")
-    ax.set_xlabel("time (s)")
-    ax.set_ylabel("frequency (Hz)")
-    if fmax is not None:
-        ax.set_ylim(0, fmax)
-    ax.set_title(title or "short-time Fourier transform")
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return plot(spec, path, title, unit, bands, fmax, full_range=full_range)

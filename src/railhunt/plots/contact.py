@@ -1,4 +1,4 @@
-"""Contact geometry from profiles: rolling-radius difference, contact angles, roll."""
+"""Contact geometry from profiles: rolling radii, contact angles, roll, contact positions."""
 
 from __future__ import annotations
 
@@ -7,63 +7,90 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
-
-if TYPE_CHECKING:
-
-    pass
-
+from matplotlib.lines import Line2D
 
 from railhunt.plots.figure import new_figure, save_figure
 
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
-def plot_contact_geometry(geometry: object, path: str | os.PathLike[str]) -> Path:
-    """Plot a wheelset's contact geometry against its lateral displacement (mm, deg, mrad).
+    from railhunt.contact.geometry import ContactGeometry
 
-    Four panels: rolling radii ``r_L``, ``r_R``; rolling-radius difference ``Delta r``;
-    contact angles ``delta_L``, ``delta_R``; wheelset roll and the contact point's position
-    on each wheel profile. Contact-point jumps (two-point contact) are marked by dotted
-    vertical lines.
+#: Colours of the left and right wheel (and rail) in every panel.
+LEFT, RIGHT = "tab:blue", "tab:orange"
+#: Colour of the contact-point jump lines.
+JUMP = "0.45"
+
+
+def contact_geometry_figure(geometry: ContactGeometry) -> Figure:
+    """The figure of :func:`plot_contact_geometry`, not saved."""
+    g = geometry
+    y = g.y * 1e3
+    fig = new_figure(10.0, 9.0)
+    axes = fig.subplots(3, 2, sharex=True)
+    panels = (
+        (axes[0, 0], "(a) rolling radius (mm)", g.r_left * 1e3, g.r_right * 1e3),
+        (axes[0, 1], r"(b) rolling-radius difference $\Delta r = r_L - r_R$ (mm)",
+         g.delta_r * 1e3, None),
+        (axes[1, 0], "(c) contact angle (deg)", np.degrees(g.delta_left),
+         np.degrees(g.delta_right)),
+        (axes[1, 1], "(d) wheelset roll (mrad)", g.roll * 1e3, None),
+        (axes[2, 0], "(e) contact point on the wheel profile (mm)", g.wheel_left * 1e3,
+         g.wheel_right * 1e3),
+        (axes[2, 1], "(f) contact point on the rail profile (mm)", g.rail_left * 1e3,
+         g.rail_right * 1e3),
+    )  # fmt: skip
+    jumps = y[np.asarray(g.jump, dtype=bool)]
+    for ax, title, left, right in panels:
+        if right is None:
+            ax.plot(y, left, color="k", lw=1.3)
+        else:
+            ax.plot(y, left, color=LEFT, lw=1.3)
+            ax.plot(y, right, color=RIGHT, lw=1.3)
+        ax.set_title(title, loc="left", fontsize="medium")
+        ax.grid(True, alpha=0.3)
+        for yj in jumps:
+            ax.axvline(yj, color=JUMP, linestyle=":", linewidth=0.9, zorder=0)
+    for ax in axes[0]:  # the jumps' positions, once, above the top panels
+        for yj in jumps:
+            ax.annotate(f"{yj:+.1f}", (yj, 1.0), xycoords=("data", "axes fraction"),
+                        xytext=(-2 if yj < 0 else 2, -3), textcoords="offset points",
+                        rotation=90, ha="right" if yj < 0 else "left", va="top",
+                        fontsize=7, color=JUMP)  # fmt: skip
+    for ax in axes[2]:
+        ax.set_xlabel("lateral wheelset displacement y (mm), + left")
+    handles = [Line2D([], [], color=LEFT, lw=1.3, label="left wheel / rail"),
+               Line2D([], [], color=RIGHT, lw=1.3, label="right wheel / rail"),
+               Line2D([], [], color="k", lw=1.3, label="wheelset"),
+               Line2D([], [], color=JUMP, ls=":", lw=0.9,
+                      label="contact-point jump (two-point contact) at y (mm)")]  # fmt: skip
+    fig.legend(handles=handles, loc="outside lower center", ncols=4, fontsize="small")
+    p = g.params
+    fig.suptitle(f"{p.get('wheel', '')} on {p.get('rail', '')}, inclination "
+                 f"{p.get('rail_inclination', 0):.4g}, gauge {p.get('gauge', 0) * 1e3:g} mm")
+    return fig
+
+
+def plot_contact_geometry(geometry: ContactGeometry, path: str | os.PathLike[str]) -> Path:
+    """Plot a wheelset's contact geometry against its lateral displacement.
+
+    Six panels, one unit per axis, against the lateral displacement y (mm): (a) rolling
+    radii ``r_L``, ``r_R`` (mm); (b) the rolling-radius difference ``Delta r`` (mm); (c)
+    contact angles ``delta_L``, ``delta_R`` (deg); (d) wheelset roll (mrad); (e), (f) the
+    contact point's lateral position on each wheel and rail profile (mm, profile axes).
+    Left is blue, right orange in every panel. Contact-point jumps (two-point contact) are
+    dotted vertical lines, their y written at the top. One legend, below the panels.
 
     Parameters
     ----------
     geometry : railhunt.contact.geometry.ContactGeometry
         The table to plot.
     path : str or os.PathLike
-        PNG file to write.
+        Output file; the format follows the suffix.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
     """
-    g = geometry
-    y = g.y * 1e3
-    fig = new_figure(10.0, 7.0)
-    axes = fig.subplots(2, 2, sharex=True)
-    ax = axes[0, 0]
-    ax.plot(y, g.r_left * 1e3, label="$r_L$")
-    ax.plot(y, g.r_right * 1e3, label="$r_R$")
-    ax.set_ylabel("rolling radius (mm)")
-    ax.legend()
-    ax = axes[0, 1]
-    ax.plot(y, g.delta_r * 1e3, color="k")
-    ax.set_ylabel(r"$\Delta r = r_L - r_R$ (mm)")
-    ax = axes[1, 0]
-    ax.plot(y, np.degrees(g.delta_left), label=r"$\delta_L$")
-    ax.plot(y, np.degrees(g.delta_right), label=r"$\delta_R$")
-    ax.set_ylabel("contact angle (deg)")
-    ax.legend()
-    ax = axes[1, 1]
-    ax.plot(y, g.roll * 1e3, color="k", label="roll (mrad)")
-    ax.plot(y, g.wheel_left * 1e3, label="contact on left wheel (mm)")
-    ax.plot(y, g.wheel_right * 1e3, label="contact on right wheel (mm)")
-    ax.set_ylabel("roll (mrad), contact position (mm)")
-    ax.legend(fontsize="small")
-    for ax in axes.flat:
-        ax.grid(True, alpha=0.3)
-        for yj in y[g.jump]:
-            ax.axvline(yj, color="0.6", linestyle=":", linewidth=0.8)
-    for ax in axes[1]:
-        ax.set_xlabel("lateral wheelset displacement y (mm), + left")
-    p = g.params
-    fig.suptitle(f"{p.get('wheel', '')} on {p.get('rail', '')}, inclination "
-                 f"{p.get('rail_inclination', 0):.4g}, gauge {p.get('gauge', 0) * 1e3:g} mm")
-    return save_figure(fig, path)
-
-
-# --------------------------------------------------------------------------- parameter studies
+    return save_figure(contact_geometry_figure(geometry), path)

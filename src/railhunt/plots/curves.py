@@ -14,12 +14,14 @@ from railhunt.plots.figure import new_figure, save_figure
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
     from railhunt.curve import Curve
     from railhunt.simulation import SimulationResult
     from railhunt.vehicle import Vehicle
 
-__all__ = ["deficiency_speed_kmh", "plot_curve_entry", "plot_stability_map"]
+__all__ = ["curve_entry_figure", "deficiency_speed_kmh", "plot_curve_entry", "plot_stability_map",
+           "stability_map_figure"]
 
 #: Cant deficiency (m) of the dashed reference line of the stability map: 150 mm, about
 #: the limit of cant deficiency allowed for conventional vehicles on high-speed lines.
@@ -77,6 +79,11 @@ def plot_stability_map(results: Any, path: str | os.PathLike[str]) -> Path:
     pathlib.Path
         The file written.
     """
+    return save_figure(stability_map_figure(results), path)
+
+
+def stability_map_figure(results: Any) -> Figure:
+    """The figure of :func:`plot_stability_map`, not saved."""
     res = _map_results(results)
     if not len(res):
         raise ValueError("the stability map has no rows: nothing to plot")
@@ -149,7 +156,7 @@ def plot_stability_map(results: Any, path: str | os.PathLike[str]) -> Path:
                  fontsize="medium")  # fmt: skip
     ax.grid(True, which="both", alpha=0.3)
     fig.legend(loc="outside lower center", ncols=2, fontsize="small")
-    return save_figure(fig, path)
+    return fig
 
 
 def _radius_axis(ax: Axes, radii: np.ndarray, straight_x: float, straight: bool) -> None:
@@ -212,6 +219,13 @@ def plot_curve_entry(run: SimulationResult, vehicle: Vehicle, path: str | os.Pat
     pathlib.Path
         The file written.
     """
+    return save_figure(curve_entry_figure(run, vehicle, curve=curve,
+                                          without_blowoff=without_blowoff), path)  # fmt: skip
+
+
+def curve_entry_figure(run: SimulationResult, vehicle: Vehicle, *, curve: Curve | None = None,
+                       without_blowoff: SimulationResult | None = None) -> Figure:  # fmt: skip
+    """The figure of :func:`plot_curve_entry`, not saved."""
     from railhunt.paper2019 import NO_BLOWOFF
 
     fig = new_figure(8.0, 8.6)
@@ -266,4 +280,4 @@ def plot_curve_entry(run: SimulationResult, vehicle: Vehicle, path: str | os.Pat
         ax.axhline(0.0, color="0.5", lw=0.5)
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize="x-small", loc="best", ncols=2)
-    return save_figure(fig, path)
+    return fig

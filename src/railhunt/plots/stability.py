@@ -8,14 +8,17 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
-
-if TYPE_CHECKING:
-
-    from railhunt.analysis.continuation import BifurcationDiagram
-    from railhunt.analysis.linear import EigenResult, LinearCriticalSpeed
-
+from matplotlib.lines import Line2D
 
 from railhunt.plots.figure import new_figure, save_figure
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+    from railhunt.analysis.branches import Branch
+    from railhunt.analysis.continuation import BifurcationDiagram
+    from railhunt.analysis.linear import EigenResult, LinearCriticalSpeed
 
 
 def plot_root_locus(
@@ -23,7 +26,19 @@ def plot_root_locus(
     path: str | os.PathLike[str],
     linear: LinearCriticalSpeed | None = None,
 ) -> Path:
-    """Plot the root locus and the hunting-mode damping ratio versus speed.
+    """Plot the root locus and the hunting-mode damping ratio versus speed to a file.
+
+    The figure of :func:`root_locus_figure`, saved to ``path`` (the format follows the
+    suffix); returns the path.
+    """
+    return save_figure(root_locus_figure(eigen_result, linear), path)
+
+
+def root_locus_figure(
+    eigen_result: EigenResult,
+    linear: LinearCriticalSpeed | None = None,
+) -> Figure:
+    """The root locus and the hunting-mode damping ratio versus speed.
 
     Left: every eigenvalue of the linearised model in the upper half plane, real part
     (1/s) against frequency ``Im/2pi`` (Hz), coloured by speed (km/h), with the hunting
@@ -35,15 +50,13 @@ def plot_root_locus(
     ----------
     eigen_result : EigenResult
         Output of :func:`railhunt.eigen_analysis`.
-    path : str or os.PathLike
-        Output file; the format follows the suffix.
     linear : LinearCriticalSpeed, optional
         Output of :func:`railhunt.linear_critical_speed`; marked on both panels when given.
 
     Returns
     -------
-    pathlib.Path
-        The file written.
+    matplotlib.figure.Figure
+        The figure (Agg canvas), not saved.
     """
     speeds = np.asarray(eigen_result.speeds_kmh, dtype=float)
     eig = np.asarray(eigen_result.eigenvalues)
@@ -121,64 +134,218 @@ def plot_root_locus(
     ax_z.set_ylabel("hunting damping ratio (%)")
     ax_z.set_title("hunting mode damping (< 0: hunting grows)")
     ax_z.grid(True, alpha=0.3)
-    return save_figure(fig, path)
+    return fig
+
+
+#: What the amplitude axis of a bifurcation diagram shows: the leading wheelset's lateral
+#: amplitude (the paper's output, and the one point P is defined on) or the largest of all
+#: wheelsets' (a branch on which mainly the rear bogie hunts then shows its real size).
+WHEELSET_CHOICES = ("leading", "largest")
+#: Colours of the branches, in the order of ``diagram.branches``.
+_BRANCH_COLOURS = ("C0", "C2", "C4", "C5")
+
+
+def _check_wheelset(wheelset: str) -> None:
+    if wheelset not in WHEELSET_CHOICES:
+        raise ValueError(f"wheelset = {wheelset!r} is invalid: must be one of "
+                         f"{', '.join(map(repr, WHEELSET_CHOICES))}")  # fmt: skip
+
+
+def branch_amplitude(branch: Branch, wheelset: str = "leading") -> np.ndarray:
+    """The amplitude (m) a diagram plots for each orbit of ``branch``.
+
+    ``"leading"``: the leading wheelset's (``branch.amplitude``); ``"largest"``: the
+    largest of ``branch.wheelset_amplitudes`` (every wheelset's amplitude), the leading
+    wheelset's when a branch carries no per-wheelset amplitudes.
+    """
+    _check_wheelset(wheelset)
+    w = np.asarray(branch.wheelset_amplitudes, dtype=float)
+    if wheelset == "leading" or w.ndim != 2 or w.shape[0] != branch.amplitude.size:
+        return np.asarray(branch.amplitude, dtype=float)
+    return np.max(w, axis=1)
+
+
+def hunting_bogie(branch: Branch) -> str:
+    """Which bogie hunts on ``branch``: ``"front"``, ``"rear"``, ``"both"`` or ``""``.
+
+    Per orbit, a bogie hunts mainly when its wheelsets' largest amplitude is more than
+    twice the other bogie's (wheelsets 1-2 front, 3-4 rear); the branch takes the verdict
+    of most of its orbits above 0.1 mm. ``""`` when the branch has no four wheelset
+    amplitudes or no orbit above 0.1 mm.
+    """
+    w = np.asarray(branch.wheelset_amplitudes, dtype=float)
+    if w.ndim != 2 or w.shape[1] != 4:
+        return ""
+    front, rear = w[:, :2].max(axis=1), w[:, 2:].max(axis=1)
+    seen = np.maximum(front, rear) > 1e-4
+    if not seen.any():
+        return ""
+    votes = {"rear": int(np.count_nonzero(seen & (rear > 2 * front))),
+             "front": int(np.count_nonzero(seen & (front > 2 * rear)))}  # fmt: skip
+    votes["both"] = int(np.count_nonzero(seen)) - votes["rear"] - votes["front"]
+    return max(votes, key=lambda k: votes[k])
+
+
+def _branch_name(diagram: BifurcationDiagram, n: int) -> str:
+    branch = diagram.branches[n]
+    name = "Hopf branch" if branch.origin == "hopf" else f"branch {n + 1}"
+    who = hunting_bogie(branch)
+    return f"{name} ({who} bogie{'s hunt' if who == 'both' else ' hunts'})" if who else name
+
+
+def _point_p(diagram: BifurcationDiagram, amplitude: float,
+             wheelset: str) -> tuple[float, float]:  # fmt: skip
+    """Point P (km/h, plotted amplitude in m): where the leading wheelset's amplitude
+    first crosses ``amplitude`` between two unstable orbits, as
+    :meth:`BifurcationDiagram.point_p_kmh`; NaN, NaN when none does."""
+    best = (math.inf, math.nan)
+    for branch in diagram.branches:
+        a, s, st = branch.amplitude, branch.speed_kmh, branch.stable
+        shown = branch_amplitude(branch, wheelset)
+        for i in range(a.size - 1):
+            if (a[i] - amplitude) * (a[i + 1] - amplitude) > 0 or a[i] == a[i + 1]:
+                continue
+            if st[i] or st[i + 1]:
+                continue
+            w = (amplitude - a[i]) / (a[i + 1] - a[i])
+            speed = float(s[i] + w * (s[i + 1] - s[i]))
+            if speed < best[0]:
+                best = (speed, float(shown[i] + w * (shown[i + 1] - shown[i])))
+    return best if math.isfinite(best[0]) else (math.nan, math.nan)
+
+
+def _amplitude_label(wheelset: str, short: bool = False) -> str:
+    if wheelset == "largest":
+        return ("largest wheelset amplitude (mm)" if short else
+                "amplitude of the largest wheelset, max(y_w1..y_w4) (mm)")
+    return "y_w1 amplitude (mm)" if short else "amplitude of leading wheelset y_w1 (mm)"
+
+
+def _draw_diagram(ax: Axes, d: BifurcationDiagram, wheelset: str, lw: float) -> None:
+    """Equilibrium, branches (stable solid, unstable dashed) and the Hopf point on ``ax``."""
+    lo, hi = d.speed_range_kmh
+    hopf = d.hopf_speed_kmh
+    # The equilibrium lies on the amplitude axis' lower edge: drawn unclipped, on top.
+    ax.plot([lo, min(hopf, hi)], [0, 0], "k-", lw=lw * 1.25, clip_on=False, zorder=4)
+    if hopf < hi:
+        ax.plot([hopf, hi], [0, 0], "k--", lw=lw * 0.75, clip_on=False, zorder=4)
+    for n, branch in enumerate(d.branches):
+        c = _BRANCH_COLOURS[n % len(_BRANCH_COLOURS)]
+        amp = branch_amplitude(branch, wheelset) * 1e3
+        for first, last, stable in branch.segments():
+            sl = slice(first, last + 1)
+            ax.plot(branch.speed_kmh[sl], amp[sl], "-" if stable else "--", color=c,
+                    lw=lw if stable else lw * 0.6)  # fmt: skip
+    ax.plot([hopf], [0], "o", color="C3", ms=4 * lw, zorder=5, clip_on=False)
+
+
+def bifurcation_figure(
+    diagram: BifurcationDiagram,
+    point_p_amplitude: float | None = 3e-3,
+    *,
+    wheelset: str = "leading",
+) -> Figure:
+    """The figure of :func:`plot_bifurcation`, not saved."""
+    _check_wheelset(wheelset)
+    fig = new_figure(7.5, 5.6)
+    ax = fig.add_subplot(1, 1, 1)
+    lo, hi = diagram.speed_range_kmh
+    hopf = diagram.hopf_speed_kmh
+    _draw_diagram(ax, diagram, wheelset, 2.0)
+    handles = [Line2D([], [], color="k", lw=2.5, label="equilibrium, stable"),
+               Line2D([], [], color="k", ls="--", lw=1.5, label="equilibrium, unstable")]
+    for n in range(len(diagram.branches)):
+        c = _BRANCH_COLOURS[n % len(_BRANCH_COLOURS)]
+        handles.append(Line2D([], [], color=c, lw=2,
+                              label=f"{_branch_name(diagram, n)}: stable (solid) / unstable "
+                              "(dashed)"))  # fmt: skip
+    handles.append(Line2D([], [], ls="none", marker="o", color="C3", ms=8,
+                          label=f"Hopf point A, V_lim = {hopf:.1f} km/h"))  # fmt: skip
+    for branch in diagram.branches:
+        shown = branch_amplitude(branch, wheelset)
+        for fold in branch.folds:  # the fold's own amplitude, or the plotted one at its orbit
+            amp = fold.amplitude if wheelset == "leading" else shown[fold.index]
+            ax.plot([fold.speed_kmh], [amp * 1e3], "s", color="C1", ms=6, zorder=5)
+    if diagram.folds:
+        handles.append(Line2D([], [], ls="none", marker="s", color="C1", ms=6, label="folds"))
+    v_nl = diagram.fold_speed_kmh
+    if math.isfinite(v_nl):
+        ax.axvline(v_nl, color="C1", lw=1.0, ls=":")
+        handles.append(Line2D([], [], color="C1", lw=1.0, ls=":",
+                              label=f"lowest limit cycle V_nl = {v_nl:.1f} km/h"))  # fmt: skip
+    elif diagram.fold_below_range:
+        handles.append(Line2D([], [], ls="none", label=f"lowest limit cycle below {lo:g} km/h "
+                              "(a branch leaves the range)"))  # fmt: skip
+    if point_p_amplitude is not None:
+        mm = point_p_amplitude * 1e3
+        vp, shown = _point_p(diagram, point_p_amplitude, wheelset)
+        if wheelset == "leading":
+            ax.axhline(mm, color="0.5", lw=0.8, ls=":")
+            handles.append(Line2D([], [], color="0.5", lw=0.8, ls=":",
+                                  label=f"{mm:g} mm disturbance of the leading wheelset"))
+        if math.isfinite(vp):
+            ax.plot([vp], [shown * 1e3], "D", color="C3", ms=7, zorder=6)
+            handles.append(Line2D([], [], ls="none", marker="D", color="C3", ms=7,
+                                  label=f"P: y_w1 = {mm:g} mm on an unstable branch, "
+                                  f"{vp:.1f} km/h"))  # fmt: skip
+        else:
+            handles.append(Line2D([], [], ls="none", label=f"P: no unstable branch reaches "
+                                  f"y_w1 = {mm:g} mm"))  # fmt: skip
+    ax.set_xlim(lo, hi)
+    ax.set_ylim(0.0, _top(diagram, wheelset, point_p_amplitude))
+    ax.set_xlabel("speed (km/h)")
+    ax.set_ylabel(_amplitude_label(wheelset))
+    ax.set_title(f"Bifurcation diagram ({diagram.hopf_type} Hopf bifurcation)")
+    ax.grid(True, alpha=0.3)
+    fig.legend(handles=handles, loc="outside lower center", ncols=2, fontsize=7.5)
+    return fig
+
+
+def _top(diagram: BifurcationDiagram, wheelset: str, extra: float | None = None) -> float:
+    """Upper amplitude limit (mm): 8 % above the largest plotted amplitude (at least 1 mm)."""
+    amps = [float(np.max(branch_amplitude(b, wheelset))) for b in diagram.branches
+            if b.amplitude.size]  # fmt: skip
+    top = max([*amps, extra or 0.0, 1e-3]) * 1e3
+    return 1.08 * top
 
 
 def plot_bifurcation(
     diagram: BifurcationDiagram,
     path: str | os.PathLike[str],
     point_p_amplitude: float | None = 3e-3,
+    *,
+    wheelset: str = "leading",
 ) -> Path:
     """Bifurcation diagram like the paper's Fig. 7a.
 
-    Amplitude of the leading wheelset (mm) against speed (km/h): stable limit cycles
-    solid, unstable dashed, the centred equilibrium along the axis (stable solid up to
-    the Hopf point, dashed above), the Hopf point and the folds marked, and the paper's
-    point P where a disturbance of ``point_p_amplitude`` (m) meets an unstable branch.
+    Amplitude (mm) against speed (km/h): stable limit cycles solid, unstable dashed, the
+    centred equilibrium along the speed axis (stable solid up to the Hopf point, dashed
+    above), the Hopf point, the folds and the lowest limit cycle V_nl marked, and the
+    paper's point P where a disturbance of ``point_p_amplitude`` (m) of the leading
+    wheelset meets an unstable branch. The legend sits below the axes and names, for each
+    branch, the bogie whose wheelsets hunt most on it.
+
+    Parameters
+    ----------
+    diagram : BifurcationDiagram
+        Output of :func:`railhunt.bifurcation_diagram`.
+    path : str or os.PathLike
+        Output file; the format follows the suffix.
+    point_p_amplitude : float or None
+        Disturbance (m) that defines point P; None draws no point P.
+    wheelset : {"leading", "largest"}
+        The amplitude on the vertical axis: the leading wheelset's ``y_w1`` (the paper's
+        output, default) or the largest of the four wheelsets'. With ``"largest"`` a
+        branch on which the rear bogie hunts shows its real size instead of the leading
+        wheelset's fraction of a millimetre; point P is still defined on ``y_w1`` and is
+        drawn on its branch.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
     """
-    fig = new_figure(7.5, 4.8)
-    ax = fig.add_subplot(1, 1, 1)
-    lo, hi = diagram.speed_range_kmh
-    hopf = diagram.hopf_speed_kmh
-    ax.plot([lo, min(hopf, hi)], [0, 0], "k-", lw=2, label="equilibrium, stable")
-    if hopf < hi:
-        ax.plot([hopf, hi], [0, 0], "k--", lw=1.2, label="equilibrium, unstable")
-    colours = ["C0", "C2", "C4", "C5"]
-    for n, branch in enumerate(diagram.branches):
-        c = colours[n % len(colours)]
-        name = "Hopf branch" if branch.origin == "hopf" else f"branch {n + 1}"
-        for first, last, stable in branch.segments():
-            sl = slice(first, last + 1)
-            ax.plot(branch.speed_kmh[sl], branch.amplitude[sl] * 1e3, "-" if stable else "--",
-                    color=c, lw=2 if stable else 1.2)  # fmt: skip
-        ax.plot([], [], "-", color=c, lw=2, label=f"{name}: stable (solid) / unstable (dashed)")
-    ax.plot([hopf], [0], "o", color="C3", ms=8, zorder=5,
-            label=f"Hopf point A, V_lim = {hopf:.1f} km/h")  # fmt: skip
-    for k, fold in enumerate(diagram.folds):
-        ax.plot([fold.speed_kmh], [fold.amplitude * 1e3], "s", color="C1", ms=6, zorder=5,
-                label="folds" if k == 0 else None)  # fmt: skip
-    v_nl = diagram.fold_speed_kmh
-    ax.axvline(v_nl, color="C1", lw=0.8, ls=":")
-    ax.text(v_nl, 0.02, f" V_nl = {v_nl:.1f} km/h", transform=ax.get_xaxis_transform(),
-            color="C1", va="bottom")  # fmt: skip
-    if point_p_amplitude is not None:
-        vp = diagram.point_p_kmh(point_p_amplitude)
-        ax.axhline(point_p_amplitude * 1e3, color="0.5", lw=0.6, ls=":")
-        if math.isfinite(vp):
-            ax.plot([vp], [point_p_amplitude * 1e3], "D", color="C3", ms=7, zorder=6,
-                    label=f"P: {point_p_amplitude * 1e3:g} mm meets unstable branch, "
-                    f"{vp:.1f} km/h")  # fmt: skip
-        else:
-            ax.text(lo, point_p_amplitude * 1e3, f" {point_p_amplitude * 1e3:g} mm: no unstable "
-                    "branch crosses it", va="bottom", fontsize=8, color="0.4")  # fmt: skip
-    ax.set_xlim(lo, hi)
-    ax.set_ylim(bottom=-0.3)
-    ax.set_xlabel("speed (km/h)")
-    ax.set_ylabel("amplitude of leading wheelset y_w1 (mm)")
-    ax.set_title(f"Bifurcation diagram ({diagram.hopf_type} Hopf bifurcation)")
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=7, loc="upper left")
-    return save_figure(fig, path)
+    return save_figure(bifurcation_figure(diagram, point_p_amplitude, wheelset=wheelset), path)
 
 
 def plot_hunting_frequency(
@@ -190,9 +357,23 @@ def plot_hunting_frequency(
 ) -> Path:
     """Hunting frequency versus speed like the paper's Fig. 7b, the jump drawn dashed.
 
-    Frequencies from the hunting eigenvalue (disturbance decays) as circles joined by a
-    line, from the limit cycle as squares; the jump between them (points Q1, Q2) dashed.
+    Frequencies (Hz) against speed (km/h) from the hunting eigenvalue (disturbance
+    decays) as circles joined by a line, from the limit cycle as squares; the jump between
+    them (points Q1, Q2) dashed. ``sources`` holds ``"eigenvalue"`` or ``"limit-cycle"``
+    per speed; ``initial_amplitude`` (m) is the release named in the title. Returns the
+    file written (the format follows the suffix of ``path``).
     """
+    return save_figure(hunting_frequency_figure(speeds_kmh, frequency_hz, sources,
+                                                initial_amplitude), path)  # fmt: skip
+
+
+def hunting_frequency_figure(
+    speeds_kmh: np.ndarray,
+    frequency_hz: np.ndarray,
+    sources: list[str],
+    initial_amplitude: float = 3e-3,
+) -> Figure:
+    """The figure of :func:`plot_hunting_frequency`, not saved."""
     speeds = np.asarray(speeds_kmh, dtype=float)
     freq = np.asarray(frequency_hz, dtype=float)
     fig = new_figure(7.0, 4.2)
@@ -213,9 +394,61 @@ def plot_hunting_frequency(
     ax.set_title(f"Hunting frequency, initial wheelset displacement {initial_amplitude * 1e3:g} mm")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
-    return save_figure(fig, path)
+    return fig
 
 
+def bifurcation_family_figure(
+    family: list[tuple[float, BifurcationDiagram]],
+    parameter: str = "F_u",
+    unit: str = "kN",
+    scale: float = 1e-3,
+    *,
+    wheelset: str = "leading",
+) -> Figure:
+    """The figure of :func:`plot_bifurcation_family`, not saved."""
+    _check_wheelset(wheelset)
+    if not family:
+        raise ValueError("family is empty: give at least one (value, diagram) pair")
+    n = len(family)
+    cols = min(n, 3)
+    rows = int(math.ceil(n / cols))
+    fig = new_figure(4.2 * cols, 3.1 * rows + 0.9)
+    axes = fig.subplots(rows, cols, sharey=True, squeeze=False)
+    top = max(_top(d, wheelset) for _, d in family)
+    for k, (value, d) in enumerate(family):
+        ax = axes.flat[k]
+        lo, hi = d.speed_range_kmh
+        _draw_diagram(ax, d, wheelset, 1.6)
+        if math.isfinite(d.fold_speed_kmh):
+            ax.axvline(d.fold_speed_kmh, color="C1", lw=1.0, ls=":")
+        text = "no blow-off" if value >= 1e8 else f"{value * scale:g} {unit}"
+        v_nl = (f"V_nl {d.fold_speed_kmh:.0f} km/h" if math.isfinite(d.fold_speed_kmh)
+                else "V_nl below the range")  # fmt: skip
+        ax.set_title(f"{parameter} = {text}: {d.hopf_type}, {v_nl}", fontsize=9)
+        ax.set_xlim(lo, hi)
+        ax.set_ylim(0.0, top)
+        ax.grid(True, alpha=0.3)
+        if k >= n - cols:
+            ax.set_xlabel("speed (km/h)", fontsize=8)
+        if k % cols == 0:
+            ax.set_ylabel(_amplitude_label(wheelset, short=True), fontsize=8)
+        ax.tick_params(labelsize=8)
+    for ax in axes.flat[n:]:
+        ax.set_visible(False)
+    handles = [Line2D([], [], color="k", lw=2, label="equilibrium: stable"),
+               Line2D([], [], color="k", ls="--", lw=1.2, label="equilibrium: unstable"),
+               Line2D([], [], color="0.3", lw=1.6, label="limit cycles: stable"),
+               Line2D([], [], color="0.3", ls="--", lw=1.0, label="limit cycles: unstable"),
+               Line2D([], [], color="C0", lw=1.6, label="branch born at the Hopf point"),
+               Line2D([], [], color="C2", lw=1.6, label="branch from a simulated large cycle"),
+               Line2D([], [], ls="none", marker="o", color="C3", label="Hopf point"),
+               Line2D([], [], color="C1", ls=":", lw=1.0,
+                      label="lowest limit cycle (nonlinear critical speed)")]  # fmt: skip
+    fig.legend(handles=handles, loc="outside lower center", ncols=4, fontsize=7.5)
+    what = "largest wheelset" if wheelset == "largest" else "leading wheelset"
+    fig.suptitle(f"Bifurcation diagrams against {parameter} ({what} amplitude, one scale "
+                 "for all panels)", fontsize=10)  # fmt: skip
+    return fig
 
 
 def plot_bifurcation_family(
@@ -224,36 +457,35 @@ def plot_bifurcation_family(
     parameter: str = "F_u",
     unit: str = "kN",
     scale: float = 1e-3,
+    *,
+    wheelset: str = "leading",
 ) -> Path:
     """Bifurcation diagrams of a parameter family side by side, like the paper's Fig. 13.
 
-    One panel per member: amplitude of the leading wheelset (mm) against speed, stable
-    solid, unstable dashed, the Hopf point and the lowest fold marked, the type in the title.
+    One panel per member: amplitude (mm) against speed (km/h), stable limit cycles solid,
+    unstable dashed, the equilibrium on the speed axis, the Hopf point and the lowest limit
+    cycle (dotted) marked, the type and the nonlinear critical speed in the title. All
+    panels share one amplitude scale starting at 0, so that the members' cycles compare at
+    a glance; one legend below the panels.
+
+    Parameters
+    ----------
+    family : list of (float, BifurcationDiagram)
+        Parameter value (SI) and its diagram, in panel order; a value of 1e8 or more is
+        shown as "no blow-off".
+    path : str or os.PathLike
+        Output file; the format follows the suffix.
+    parameter, unit : str
+        Name of the varied parameter and the unit its value is shown in.
+    scale : float
+        Factor from the SI value to ``unit`` (1e-3 for N to kN).
+    wheelset : {"leading", "largest"}
+        Amplitude on the vertical axis, as in :func:`plot_bifurcation`.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
     """
-    n = len(family)
-    cols = min(n, 3)
-    rows = int(math.ceil(n / cols))
-    fig = new_figure(4.2 * cols, 3.3 * rows)
-    for k, (value, d) in enumerate(family):
-        ax = fig.add_subplot(rows, cols, k + 1)
-        lo, hi = d.speed_range_kmh
-        hopf = d.hopf_speed_kmh
-        ax.plot([lo, min(hopf, hi)], [0, 0], "k-", lw=1.5)
-        if hopf < hi:
-            ax.plot([hopf, hi], [0, 0], "k--", lw=1)
-        for n_b, branch in enumerate(d.branches):
-            c = f"C{[0, 2, 4, 5][n_b % 4]}"
-            for first, last, stable in branch.segments():
-                sl = slice(first, last + 1)
-                ax.plot(branch.speed_kmh[sl], branch.amplitude[sl] * 1e3,
-                        "-" if stable else "--", color=c, lw=1.6 if stable else 1)  # fmt: skip
-        ax.plot([hopf], [0], "o", color="C3", ms=5)
-        ax.axvline(d.fold_speed_kmh, color="C1", lw=0.8, ls=":")
-        text = "no blow-off" if value >= 1e8 else f"{value * scale:g} {unit}"
-        ax.set_title(f"{parameter} = {text}: {d.hopf_type}", fontsize=9)
-        ax.set_xlim(lo, hi)
-        ax.set_ylim(bottom=-0.3)
-        ax.grid(True, alpha=0.3)
-        ax.set_xlabel("speed (km/h)", fontsize=8)
-        ax.set_ylabel("y_w1 amplitude (mm)", fontsize=8)
-    return save_figure(fig, path)
+    return save_figure(bifurcation_family_figure(family, parameter, unit, scale,
+                                                 wheelset=wheelset), path)  # fmt: skip

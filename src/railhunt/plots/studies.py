@@ -71,6 +71,14 @@ def plot_sweep(
         requested parameter is not one of the lines, or the results have neither the
         critical speed nor the hunting frequency.
     """
+    return save_figure(sweep_figure(results, parameters), path)
+
+
+def sweep_figure(
+    results: object,
+    parameters: list[str] | tuple[str, ...] | None = None,
+) -> Figure:
+    """The figure of :func:`plot_sweep`, not saved (the same checks and errors)."""
     from railhunt.studies.sections import sweep_lines
 
     lines = sweep_lines(results)
@@ -92,7 +100,7 @@ def plot_sweep(
         ax = fig.add_subplot(rows, cols, k + 1)
         _sweep_panel(ax, lines[name], f"({chr(ord('a') + k)})")
     _sweep_legend(fig)
-    return save_figure(fig, path)
+    return fig
 
 
 def _sweep_panel(ax: Axes, line: SweepLine, letter: str) -> None:
@@ -159,6 +167,11 @@ def plot_sections(section_table: SectionTable, path: str | os.PathLike[str]) -> 
     pathlib.Path
         The file written.
     """
+    return save_figure(sections_figure(section_table), path)
+
+
+def sections_figure(section_table: SectionTable) -> Figure:
+    """The figure of :func:`plot_sections`, not saved."""
     entries = list(section_table)
     if not entries:
         raise ValueError("the section table is empty: nothing to plot")
@@ -194,4 +207,4 @@ def plot_sections(section_table: SectionTable, path: str | os.PathLike[str]) -> 
     if not all(e.complete for e in entries):
         ax_f.set_xlabel("* the line does not cover every section, or points were skipped",
                         fontsize=8, color="0.3")  # fmt: skip
-    return save_figure(fig, path)
+    return fig

@@ -10,6 +10,7 @@ import numpy as np
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
     from railhunt.simulation import SimulationResult
 
@@ -52,10 +53,17 @@ def plot_time_history(
     pathlib.Path
         The file written.
     """
+    return save_figure(time_history_figure(result, channel, phase_from, verdict), path)
+
+
+def time_history_figure(result: SimulationResult, channel: str = "y_w1",
+                        phase_from: float = PHASE_FROM,
+                        verdict: str | None = None) -> Figure:  # fmt: skip
+    """The figure of :func:`plot_time_history`, not saved."""
     fig = new_figure(11.0, 4.2)
     ax_t, ax_p = fig.subplots(1, 2, width_ratios=(1.6, 1.0))
     _draw_time_history(ax_t, ax_p, result, channel, phase_from, verdict)
-    return save_figure(fig, path)
+    return fig
 
 
 def _draw_time_history(ax_t: Axes, ax_p: Axes, result: SimulationResult, channel: str,
@@ -152,13 +160,19 @@ def plot_time_histories(
     pathlib.Path
         The file written.
     """
+    return save_figure(time_histories_figure(results, channel, phase_from), path)
+
+
+def time_histories_figure(results: list[SimulationResult], channel: str = "y_w1",
+                          phase_from: float = PHASE_FROM) -> Figure:  # fmt: skip
+    """The figure of :func:`plot_time_histories`, not saved."""
     if not results:
         raise ValueError("results is empty: give at least one simulation result")
     fig = new_figure(11.0, 3.6 * len(results))
     axes = fig.subplots(len(results), 2, width_ratios=(1.6, 1.0), squeeze=False)
     for (ax_t, ax_p), result in zip(axes, results, strict=True):
         _draw_time_history(ax_t, ax_p, result, channel, phase_from)
-    return save_figure(fig, path)
+    return fig
 
 
 def plot_damper_histories(
@@ -186,6 +200,13 @@ def plot_damper_histories(
     pathlib.Path
         The file written.
     """
+    return save_figure(damper_histories_figure(cases), path)
+
+
+def damper_histories_figure(
+    cases: list[tuple[str, np.ndarray, np.ndarray, np.ndarray, float]],
+) -> Figure:
+    """The figure of :func:`plot_damper_histories`, not saved."""
     if not cases:
         raise ValueError("cases is empty: give at least one time history")
     fig = new_figure(5.2 * len(cases), 5.2)
@@ -204,4 +225,4 @@ def plot_damper_histories(
         ax_v.set_ylabel("damper velocity (m/s)")
         ax_v.grid(True, alpha=0.3)
         ax_v.legend(fontsize=7, loc="upper right")
-    return save_figure(fig, path)
+    return fig

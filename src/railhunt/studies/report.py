@@ -11,6 +11,7 @@ from __future__ import annotations
 import base64
 import html
 import os
+import struct
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -19,7 +20,8 @@ from railhunt.paper2019 import citation
 if TYPE_CHECKING:
     from railhunt.studies.records import Headline, Report, Step
 
-__all__ = ["PAPER", "build_html", "data_uri", "headline_table", "results_table", "write_html"]
+__all__ = ["PAPER", "build_html", "compact_difference", "data_uri", "headline_table", "png_size",
+           "results_table", "write_html"]
 
 #: The paper the report reproduces (as cited in docs/model.md; railhunt.paper2019.CITATION).
 PAPER = citation()
@@ -32,14 +34,19 @@ h2 { font-size: 1.2em; margin-top: 2em; border-bottom: 1px solid #ccc; }
 table { border-collapse: collapse; margin: 1em 0; font-size: 0.92em; }
 th, td { border: 1px solid #ccc; padding: 0.3em 0.6em; vertical-align: top; text-align: left; }
 th { background: #f0f0f0; }
-td.num { text-align: right; white-space: nowrap; }
+td.num { text-align: right; }
+table.headline { width: 100%; table-layout: fixed; font-size: 0.88em; }
+table.headline td, table.headline th { padding: 0.3em 0.4em; overflow-wrap: anywhere; }
+col.quantity { width: 19%; } col.value { width: 9%; } col.diff { width: 10%; }
+col.unit { width: 7%; } col.where { width: 8%; } col.why { width: 38%; }
+.scroll { overflow-x: auto; max-width: 100%; }
 tr.agrees td.diff { background: #d9f2d9; }
 tr.differs td.diff { background: #f8d7d3; }
 tr.missing td.diff { background: #eee; color: #666; }
 .note { color: #555; font-size: 0.9em; }
 details summary { cursor: pointer; color: #555; font-size: 0.85em; }
 figure { margin: 1em 0; }
-figure img { max-width: 100%; border: 1px solid #ddd; }
+figure img { max-width: 100%; height: auto; border: 1px solid #ddd; }
 figcaption { font-size: 0.92em; margin-top: 0.3em; }
 .status { display: inline-block; padding: 0 0.5em; border-radius: 0.3em; font-size: 0.85em; }
 .status.ok { background: #d9f2d9; }
@@ -68,6 +75,36 @@ def data_uri(path: str | os.PathLike[str]) -> str:
     return "data:image/png;base64," + base64.b64encode(raw).decode("ascii")
 
 
+def png_size(path: str | os.PathLike[str]) -> tuple[int, int]:
+    """Width and height (pixels) of the PNG file at ``path``, from its header."""
+    head = Path(path).read_bytes()[:24]
+    if len(head) < 24 or not head.startswith(b"\x89PNG\r\n\x1a\n") or head[12:16] != b"IHDR":
+        raise ValueError(f"{path}: not a PNG file (the report embeds PNG figures only)")
+    width, height = struct.unpack(">II", head[16:24])
+    return int(width), int(height)
+
+
+def _value(text: str) -> str:
+    """``text`` escaped for a value cell, a percentage kept with its number.
+
+    The cell wraps at the spaces of ``-20 (-6.2 %)`` or ``subcritical → supercritical (a)``
+    but never between a number and its ``%``.
+    """
+    return _e(text).replace(" %", "&nbsp;%")
+
+
+def compact_difference(row: Headline) -> str:
+    """The difference as the table shows it: the unit, which has its own column, left out.
+
+    ``-20 km/h (-6.2 %)`` with unit ``km/h`` becomes ``-20 (-6.2 %)``; a claim's verdict
+    (``holds``) stays as it is.
+    """
+    text = row.difference
+    if row.unit:
+        text = text.replace(f" {row.unit} ", " ").replace(f" {row.unit}", "")
+    return text
+
+
 def _row_class(row: Headline) -> str:
     if row.agrees is None:
         return "missing"
@@ -82,6 +119,8 @@ def headline_table(rows: list[Headline]) -> str:
     paper's sentence is folded under the quantity, the reason for a difference beside it.
     """
     out = ['<table class="headline">',
+           '<colgroup><col class="quantity"><col class="value"><col class="value">'
+           '<col class="diff"><col class="unit"><col class="where"><col class="why"></colgroup>',
            "<tr><th>quantity</th><th>paper</th><th>railhunt</th><th>difference</th>"
            "<th>unit</th><th>where in the paper</th><th>why railhunt differs</th></tr>"]
     for row in rows:
@@ -89,9 +128,9 @@ def headline_table(rows: list[Headline]) -> str:
             f'<tr class="{_row_class(row)}" id="{_e(row.key)}">'
             f"<td>{_e(row.quantity)}<details><summary>the paper's sentence</summary>"
             f"<q>{_e(row.quote)}</q></details></td>"
-            f'<td class="num">{_e(row.paper_text)}</td>'
-            f'<td class="num">{_e(row.railhunt_text)}</td>'
-            f'<td class="num diff">{_e(row.difference)}</td>'
+            f'<td class="num">{_value(row.paper_text)}</td>'
+            f'<td class="num">{_value(row.railhunt_text)}</td>'
+            f'<td class="num diff">{_value(compact_difference(row))}</td>'
             f"<td>{_e(row.unit)}</td><td>{_e(row.where)}</td>"
             f'<td class="note">{_e(row.note)}</td></tr>'
         )
@@ -102,13 +141,13 @@ def headline_table(rows: list[Headline]) -> str:
 def results_table(rows: list[dict[str, object]]) -> str:
     """HTML table of a step's own results: the columns of the first row, one row each."""
     heads = list(rows[0])
-    out = ['<table class="results">',
+    out = ['<div class="scroll"><table class="results">',
            "<tr>" + "".join(f"<th>{_e(h)}</th>" for h in heads) + "</tr>"]
     for row in rows:
         cells = "".join(f'<td class="{"note" if h == "note" else "num"}">{_e(row.get(h, ""))}'
                         "</td>" for h in heads)  # fmt: skip
         out.append(f"<tr>{cells}</tr>")
-    out.append("</table>")
+    out.append("</table></div>")
     return "\n".join(out)
 
 
@@ -123,7 +162,9 @@ def _step_html(step: Step) -> str:
     if step.paper_caption:
         parts.append(f"<p><b>The paper's caption:</b> {_e(step.paper_caption)}</p>")
     for path in step.figures:
-        parts.append(f'<figure><img src="{data_uri(path)}" alt="{_e(step.title)}: '
+        width, height = png_size(path)
+        parts.append(f'<figure><img src="{data_uri(path)}" width="{width}" height="{height}" '
+                     f'alt="{_e(step.title)}: '
                      f'{_e(Path(path).name)}"><figcaption>{_e(Path(path).name)}'
                      "</figcaption></figure>")  # fmt: skip
     if step.table:

@@ -56,7 +56,8 @@ def fig13(ctx: Context) -> Step:
                     for f, m in zip(todo, members, strict=True))  # fmt: skip
         where = "one after another in this process"
     family = [(f, done[f]) for f in forces]
-    step.figures.append(plot_bifurcation_family(family, ctx.out_dir / "fig13.png"))
+    step.figures.append(plot_bifurcation_family(family, ctx.out_dir / "fig13.png",
+                                                wheelset="largest"))  # as Fig. 7a
     types = [d.hopf_type for _, d in family]
     sequence = [t for i, t in enumerate(types) if i == 0 or t != types[i - 1]]
     hopf = np.array([d.hopf_speed_kmh for _, d in family])
@@ -68,7 +69,8 @@ def fig13(ctx: Context) -> Step:
     step.how = (f"railhunt.bifurcation_diagram {s.diagram_range_kmh[0]:g}–"
                 f"{s.diagram_range_kmh[1]:g} km/h for each F_u ({len(todo)} computed {where}"
                 + (", the 3 kN member reused from Fig. 7a" if len(todo) < len(forces) else "")
-                + "); type by classify_hopf (tolerance max(2 km/h, 1 %)).")
+                + "); type by classify_hopf (tolerance max(2 km/h, 1 %)); drawn with the "
+                "largest wheelset's amplitude on one scale for all panels.")
     paper = paper2019.EXPECTED
     sequence_row = paper["fu_type_sequence"]
     spread = float(hopf.max() - hopf.min())

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import functools
 import math
-import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
@@ -19,18 +18,12 @@ from typing import Any
 import numpy as np
 
 from railhunt.curve import Curve, fixed_deficiency
-from railhunt.studies.execute import (
-    CONNECT_TIMEOUT,
-    check_connect_timeout,
-    check_workers,
-    progress_bar,
-    run_tasks,
-)
+from railhunt.studies.execute import CONNECT_TIMEOUT, check_connect_timeout, check_workers
+from railhunt.studies.runner import run_study
 from railhunt.studies.store import (
     STATUS_FAILED,
     STATUS_NO_CRITICAL_SPEED,
     STATUS_OK,
-    ResultStore,
     SweepResults,
     columns_for,
 )
@@ -193,48 +186,14 @@ def stability_map(
     param_cols = ["radius_m", "cant_m" if cant_deficiency is None else "cant_deficiency_m"]
     meta: dict[str, Any] = _describe(vehicle, radii, cant, cant_deficiency, direction,
                                      outputs, excitation, creep_law, param_cols)  # fmt: skip
-    start = time.perf_counter()
-    store = ResultStore(out, meta, resume=resume, overwrite=overwrite) if out else None
-    rows: dict[int, dict[str, Any]] = dict(store.rows) if store else {}
-    resumed = len(rows)
-    todo = [(i, r) for i, r in enumerate(radii) if i not in rows]
     task = functools.partial(evaluate_radius, vehicle=vehicle, cant=cant,
                              cant_deficiency=cant_deficiency, direction=direction,
                              outputs=outputs, excitation=excitation,
                              creep_law=creep_law)  # fmt: skip
-    bar = progress_bar() if progress is True else None
-    bar_task = None
-    if bar is not None:
-        bar.start()
-        bar_task = bar.add_task("stability map", total=len(radii), completed=resumed)
-
-    def on_result(row: dict[str, Any]) -> None:
-        rows[row["point"]] = row
-        if store is not None:
-            store.write(row)
-        if bar is not None:
-            bar.advance(bar_task)
-        elif callable(progress):
-            progress(len(rows), len(radii))
-
-    complete = False
-    lost: list[tuple[Any, str]] = []
-    try:
-        lost = run_tasks(task, todo, on_result, client=client, scheduler=scheduler,
-                         workers=workers, connect_timeout=connect_timeout,
-                         warm_up=_warm_up if todo else None)  # fmt: skip
-        complete = len(rows) == len(radii)
-    finally:
-        if bar is not None:
-            bar.stop()
-        if store is not None:
-            store.close(complete)
-    result = SweepResults([rows[k] for k in sorted(rows)], meta, Path(out) if out else None)
-    result.computed = len(rows) - resumed
-    result.resumed = resumed
-    result.lost_reasons = [reason for _, reason in lost]
-    result.elapsed_s = time.perf_counter() - start
-    return result
+    return run_study([(i, (i, r)) for i, r in enumerate(radii)], task, meta,
+                     label="stability map", out=out, resume=resume, overwrite=overwrite,
+                     client=client, scheduler=scheduler, workers=workers, progress=progress,
+                     warm_up=_warm_up, connect_timeout=connect_timeout)  # fmt: skip
 
 
 def _describe(vehicle: Vehicle, radii: list[float], cant: float,

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import functools
 import math
-import time
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -19,19 +18,13 @@ from typing import Any
 import numpy as np
 
 from railhunt.studies.design import Point, build_design, frequency_speed, parse_ties
-from railhunt.studies.execute import (
-    CONNECT_TIMEOUT,
-    check_connect_timeout,
-    check_workers,
-    progress_bar,
-    run_tasks,
-)
+from railhunt.studies.execute import CONNECT_TIMEOUT, check_connect_timeout, check_workers
+from railhunt.studies.runner import run_study
 from railhunt.studies.store import (
     OUTPUTS,
     STATUS_FAILED,
     STATUS_NO_CRITICAL_SPEED,
     STATUS_OK,
-    ResultStore,
     SweepResults,
     columns_for,
 )
@@ -277,48 +270,14 @@ def sweep(
     speeds = {p.index: frequency_speed(p, names, frequency_speed_kmh) for p in points}
     meta = _describe(vehicle, parameters, outputs, design, samples, seed, tie_map, points,
                      speeds, frequency_amplitude, excitation, creep_law)  # fmt: skip
-    start = time.perf_counter()
-    store = ResultStore(out, meta, resume=resume, overwrite=overwrite) if out else None
-    rows: dict[int, dict[str, Any]] = dict(store.rows) if store else {}
-    resumed = len(rows)
     # Each task carries its own point and frequency speed (not the whole study's).
-    todo = [(p, speeds[p.index]) for p in points if p.index not in rows]
     task = functools.partial(_task, vehicle=vehicle, outputs=outputs,
                              excitation=excitation, creep_law=creep_law,
                              amplitude=frequency_amplitude)  # fmt: skip
-    bar = progress_bar() if progress is True else None
-    bar_task = None
-    if bar is not None:
-        bar.start()
-        bar_task = bar.add_task("sweep", total=len(points), completed=resumed)
-
-    def on_result(row: dict[str, Any]) -> None:
-        rows[row["point"]] = row
-        if store is not None:
-            store.write(row)
-        if bar is not None:
-            bar.advance(bar_task)
-        elif callable(progress):
-            progress(len(rows), len(points))
-
-    lost: list[tuple[Any, str]] = []
-    complete = False
-    try:
-        lost = run_tasks(task, todo, on_result, client=client, scheduler=scheduler,
-                         workers=workers, connect_timeout=connect_timeout,
-                         warm_up=warm_up if todo else None)  # fmt: skip
-        complete = len(rows) == len(points)
-    finally:
-        if bar is not None:
-            bar.stop()
-        if store is not None:
-            store.close(complete)
-    result = SweepResults([rows[k] for k in sorted(rows)], meta, Path(out) if out else None)
-    result.computed = len(rows) - resumed
-    result.resumed = resumed
-    result.lost_reasons = [reason for _, reason in lost]
-    result.elapsed_s = time.perf_counter() - start
-    return result
+    return run_study([(p.index, (p, speeds[p.index])) for p in points], task, meta,
+                     label="sweep", out=out, resume=resume, overwrite=overwrite, client=client,
+                     scheduler=scheduler, workers=workers, progress=progress,
+                     warm_up=warm_up, connect_timeout=connect_timeout)  # fmt: skip
 
 
 def _describe(vehicle: Vehicle, parameters: Mapping[str, object], outputs: tuple[str, ...],

@@ -73,6 +73,11 @@ def _parse_forces(ctx: click.Context, param: click.Parameter,
               "paper's Fig. 13.")
 @file_option("--family-png", "family_png", "Draw the --fu-family diagrams side by side "
              "(Fig. 13).")
+@click.option("--wheelset", "wheelset", type=click.Choice(["leading", "largest"]),
+              default="leading", show_default=True,
+              help="Amplitude drawn in --png and --family-png: the leading wheelset's (the "
+              "paper's) or the largest of the four wheelsets' (shows a cycle on which mainly "
+              "the rear bogie hunts at its real size).")
 @curve_options("Length of the transition curves of --curve-radius (m), recorded in the JSON; "
                "the limit cycles are those of the constant curve and do not depend on it "
                "[default: R/10, within 20-300 m].")
@@ -80,7 +85,7 @@ def _parse_forces(ctx: click.Context, param: click.Parameter,
 @vehicle_options
 def bifurcation_command(from_kmh: float, to_kmh: float, initial_mm: float, as_json: bool,
                         png_file: Path | None, fu_family: list[float] | None,
-                        family_png: Path | None, curve_radius: float | None,
+                        family_png: Path | None, wheelset: str, curve_radius: float | None,
                         cant_mm: float | None, transition: float | None, direction: str,
                         overwrite: bool, vehicle_file: Path | None,
                         sets: dict[str, float]) -> None:  # fmt: skip
@@ -121,11 +126,11 @@ def bifurcation_command(from_kmh: float, to_kmh: float, initial_mm: float, as_js
     if png_file is not None:
         from railhunt.plots import plot_bifurcation
 
-        plot_bifurcation(diagram, png_file, initial_mm * 1e-3)
+        plot_bifurcation(diagram, png_file, initial_mm * 1e-3, wheelset=wheelset)
     if family_png is not None:
         from railhunt.plots import plot_bifurcation_family
 
-        plot_bifurcation_family(family, family_png)
+        plot_bifurcation_family(family, family_png, wheelset=wheelset)
     summary = [{"F_u_kN": None if fu >= NO_BLOWOFF else fu * 1e-3, "hopf_type": d.hopf_type,
                 "hopf_speed_kmh": d.hopf_speed_kmh, "fold_speed_kmh": d.fold_speed_kmh}
                for fu, d in family]  # fmt: skip

@@ -10,11 +10,14 @@ import click
 from railhunt.cli.errors import CliError, user_input
 from railhunt.cli.options import check_outputs, file_option, number_range, overwrite_option
 from railhunt.cli.output import json_safe, stdout_console, traced
-from railhunt.cli.rules import Ordered, command
+from railhunt.cli.rules import Excludes, Ordered, Requires, command
 
 RULES = (
     Ordered("--fmin", "--fmax", "--fmin {fmin:g} Hz is invalid: must be below --fmax {fmax:g} Hz",
             strict=True),
+    Requires("--full-range", "--png", "{a} only applies with {b} (it sets the plotted range)"),
+    Excludes("--full-range", "--fmax", "{a} and {b} exclude each other: --fmax {fmax:g} Hz "
+             "already sets the top of the plot"),
 )
 
 
@@ -51,8 +54,12 @@ RULES = (
     default=None,
     metavar="HZ",
     callback=number_range("Hz", 0.0, 1e6, optional=True),
-    help="Highest frequency searched (and plotted) (Hz). Default: the Nyquist frequency.",
+    help="Highest frequency searched for the dominant band, and the top of the --png plot "
+    "(Hz). Default: the search goes to the Nyquist frequency; the plot shows 0-20 Hz, or up to "
+    "twice the dominant bands' upper edge when they lie higher.",
 )
+@click.option("--full-range", "full_range", is_flag=True,
+              help="Plot every frequency up to the Nyquist frequency (--png).")
 @file_option("--png", "png_file",
              "Draw the STFT amplitude map (time vs frequency, like the paper's Fig. 9a).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of a table.")
@@ -65,7 +72,8 @@ def spectrogram_command(
     fmax: float | None,
     png_file: Path | None,
     as_json: bool,
-    overwrite: bool,
+    full_range: bool = False,
+    overwrite: bool = False,
 ) -> None:
     """Short-time Fourier transform of one channel of a CSV record.
 
@@ -86,12 +94,8 @@ def spectrogram_command(
     check_outputs(overwrite=overwrite, png=png_file)
     if not csv_file.exists():
         raise CliError(f"FILE.csv {csv_file}: no such file")
-    from railhunt.analysis.spectrogram import (
-        dominant_bands,
-        plot_spectrogram,
-        read_channel,
-        stft,
-    )
+    from railhunt.analysis.spectrogram import dominant_bands, read_channel, stft
+    from railhunt.plots.spectrogram import plot_spectrogram
 
     with user_input():
         t, y, name = read_channel(csv_file, channel)
@@ -136,7 +140,7 @@ def spectrogram_command(
     if png_file is not None:
         with user_input("cannot write --png: "):
             plot_spectrogram(spec, png_file, title=f"STFT of {name}", unit=unit, bands=bands,
-                             fmax=fmax)  # fmt: skip
+                             fmax=fmax, full_range=full_range)  # fmt: skip
         if not as_json:
             click.echo(f"png: {png_file}")
 

@@ -1,0 +1,103 @@
+"""Running a study: every point a task, each result written as it finishes, resumable.
+
+:func:`run_study` is the loop that :func:`railhunt.sweep` and
+:func:`railhunt.stability_map` share: open the results file (resuming it if asked), run the
+points the file does not hold yet (in this process or on Dask, :func:`run_tasks`), write and
+report each row as it arrives, close the file (sorted when complete), and return the rows.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Sequence
+from pathlib import Path
+from typing import Any
+
+from railhunt.studies.execute import CONNECT_TIMEOUT, progress_bar, run_tasks
+from railhunt.studies.store import ResultStore, SweepResults
+
+
+def run_study(
+    points: Sequence[tuple[int, Any]],
+    task: Callable[[Any], dict[str, Any]],
+    meta: dict[str, Any],
+    *,
+    label: str,
+    out: str | Path | None = None,
+    resume: bool = False,
+    overwrite: bool = False,
+    client: Any = None,
+    scheduler: str | None = None,
+    workers: int | None = None,
+    progress: bool | Callable[[int, int], None] = False,
+    warm_up: Callable[[], None] | None = None,
+    connect_timeout: float = CONNECT_TIMEOUT,
+) -> SweepResults:
+    """Run ``task`` on every point a results file does not hold yet.
+
+    Parameters
+    ----------
+    points : sequence of (int, object)
+        Each point's index (the ``point`` column of its row) and the item ``task`` takes.
+    task : callable
+        Picklable; ``task(item)`` returns the point's results row (a dict with ``point``).
+    meta : dict
+        The study description (``<file>.sweep.json``; its fingerprint decides resume).
+    label : str
+        Name of the progress bar.
+    out, resume, overwrite : optional
+        Results file, continue it, or replace it (:class:`ResultStore`).
+    client, scheduler, workers : optional
+        Where the tasks run (:func:`railhunt.studies.execute.run_tasks`).
+    progress : bool or callable
+        A progress bar on stderr, or ``progress(done, total)`` after each point.
+    warm_up : callable, optional
+        Compiles the tasks' code in this process before workers start (only if there is
+        work to do).
+    connect_timeout : float
+        How long to try to reach ``scheduler`` (s).
+
+    Returns
+    -------
+    SweepResults
+        Rows sorted by point, with the counts computed/resumed/lost and the wall time.
+    """
+    start = time.perf_counter()
+    store = ResultStore(out, meta, resume=resume, overwrite=overwrite) if out else None
+    rows: dict[int, dict[str, Any]] = dict(store.rows) if store else {}
+    resumed = len(rows)
+    total = len(points)
+    todo = [item for index, item in points if index not in rows]
+    bar = progress_bar() if progress is True else None
+    bar_task = None
+    if bar is not None:
+        bar.start()
+        bar_task = bar.add_task(label, total=total, completed=resumed)
+
+    def on_result(row: dict[str, Any]) -> None:
+        rows[row["point"]] = row
+        if store is not None:
+            store.write(row)
+        if bar is not None:
+            bar.advance(bar_task)
+        elif callable(progress):
+            progress(len(rows), total)
+
+    lost: list[tuple[Any, str]] = []
+    complete = False
+    try:
+        lost = run_tasks(task, todo, on_result, client=client, scheduler=scheduler,
+                         workers=workers, connect_timeout=connect_timeout,
+                         warm_up=warm_up if todo else None)  # fmt: skip
+        complete = len(rows) == total
+    finally:
+        if bar is not None:
+            bar.stop()
+        if store is not None:
+            store.close(complete)
+    result = SweepResults([rows[k] for k in sorted(rows)], meta, Path(out) if out else None)
+    result.computed = len(rows) - resumed
+    result.resumed = resumed
+    result.lost_reasons = [reason for _, reason in lost]
+    result.elapsed_s = time.perf_counter() - start
+    return result
