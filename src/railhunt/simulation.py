@@ -25,7 +25,7 @@ from railhunt.kernel.layout import (
 )
 from railhunt.model import Model
 from railhunt.results import Columns, ResultDisplay, Row
-from railhunt.track import InitialDisplacement, SampledTrack, SingleDefect
+from railhunt.track import InitialDisplacement, SampledTrack, SingleDefect, check_excitation
 from railhunt.units import kmh_to_ms, ms_to_kmh
 from railhunt.vehicle import Vehicle
 
@@ -181,6 +181,25 @@ def default_atol() -> np.ndarray:
     return integrators.default_atol(N_DOF, N_DAMPER)
 
 
+class StiffDamperError(ValueError):
+    """The yaw damper's Maxwell element relaxes so fast that the automatic step collapses."""
+
+
+#: The automatic step is refused when the yaw dampers force it more than this many times
+#: below the step the rest of the model needs (:func:`auto_step`).
+STIFF_RATIO = 100.0
+
+
+def model_step(model: Model, speed: float, safety: float = 0.6, dt_max: float = 1e-3) -> float:
+    """RK4 step (s) the model needs at ``speed`` (m/s) without the yaw dampers' relaxation:
+    ``safety`` over the largest eigenvalue modulus of the Jacobian of the coordinates and
+    rates with the damper forces held (their own rows and columns left out), capped at
+    ``dt_max``."""
+    n = 2 * N_DOF
+    rate = float(np.max(np.abs(np.linalg.eigvals(model.jacobian(speed)[:n, :n]))))
+    return min(dt_max, safety / rate)
+
+
 def auto_step(model: Model, speed: float, safety: float = 0.6, dt_max: float = 1e-3) -> float:
     """RK4 step (s) from the fastest dynamics of the model at ``speed`` (m/s).
 
@@ -189,13 +208,123 @@ def auto_step(model: Model, speed: float, safety: float = 0.6, dt_max: float = 1
     and ``K_d / C_d2`` (the latter governs blow-off), capped at ``dt_max``. With the
     default ``safety = 0.6`` the step sits well inside RK4's stability limit (2.8) and
     the critical speed of the paper's vehicle is converged to 1 km/h (tests).
+
+    Raises
+    ------
+    StiffDamperError
+        When a yaw damper's relaxation forces a step more than :data:`STIFF_RATIO` times
+        below the one the rest of the model needs (:func:`model_step`): a tiny ``C_d1``
+        (or ``C_d2``) against ``K_d`` would make every run take hours. The message names
+        the rate, the step it forces and the smallest damping that avoids it.
     """
     rate = float(np.max(np.abs(np.linalg.eigvals(model.jacobian(speed)))))
     d = model.dpar
     k_d = d[:, DamperParam.K_D]
-    rate = max(rate, float(np.max(k_d / d[:, DamperParam.C_D1])),
-               float(np.max(k_d / d[:, DamperParam.C_D2])))  # fmt: skip
-    return min(dt_max, safety / rate)
+    rate_1 = float(np.max(k_d / d[:, DamperParam.C_D1]))
+    rate_2 = float(np.max(k_d / d[:, DamperParam.C_D2]))
+    dt = min(dt_max, safety / max(rate, rate_1, rate_2))
+    rest = model_step(model, speed, safety, dt_max)
+    if dt < rest / STIFF_RATIO:
+        raise StiffDamperError(stiff_damper_message(model, rest, dt, rate_1, rate_2, safety))
+    return dt
+
+
+def stiff_damper_message(model: Model, rest: float, dt: float, rate_1: float, rate_2: float,
+                         safety: float) -> str:  # fmt: skip
+    """Why :func:`auto_step` refuses: the stage, its rate, the step and the way out."""
+    stage, c_name, column = (("first", "C_d1", DamperParam.C_D1) if rate_1 >= rate_2
+                             else ("second", "C_d2", DamperParam.C_D2))  # fmt: skip
+    k_d = float(np.max(model.dpar[:, DamperParam.K_D]))
+    c = float(np.min(model.dpar[:, column]))
+    c_min = k_d * rest / (STIFF_RATIO * safety)
+    return (f"the yaw damper's {stage} stage relaxes at K_d/{c_name} = {k_d / c:.3g} 1/s "
+            f"(K_d = {k_d:.4g} N/m, {c_name} = {c:.4g} N*s/m): the automatic RK4 step "
+            f"would be {dt:.2g} s, {rest / dt:.0f} times below the {rest:.2g} s the rest of "
+            f"the model needs (every simulated second would take {1 / dt:.2g} steps); give "
+            f"{c_name} >= {c_min:.3g} N*s/m or a smaller K_d")
+
+
+class OutputTooLargeError(ValueError):
+    """The time histories a run would store do not fit in the memory available.
+
+    Attributes
+    ----------
+    rows : int
+        Output rows the run would store (or allocate).
+    nbytes : float
+        Their estimated size (bytes).
+    available : float
+        Memory available (bytes).
+    output_dt : float or None
+        An output interval (s) whose histories would fit (None: none does).
+    """
+
+    def __init__(self, message: str, rows: int, nbytes: float, available: float,
+                 output_dt: float | None) -> None:  # fmt: skip
+        super().__init__(message)
+        self.rows, self.nbytes, self.available, self.output_dt = rows, nbytes, available, output_dt
+
+
+#: Bytes per stored output row: the time, 38 states, 4 damper velocities, 32 derived
+#: channels, and the working arrays the derived channels are computed in.
+ROW_BYTES = 8 * (1 + N_STATE + N_DAMPER + 32 + 24)
+#: Largest share of the available memory a run's histories may take.
+MEMORY_SHARE = 0.5
+
+
+def output_rows(duration: float, dt: float, output_dt: float | None, method: str) -> int:
+    """Rows a run of ``duration`` s stores (RK4 at step ``dt`` s, or what DOPRI5 allocates:
+    one per ``output_dt``, or without it one per possible step of 10 us)."""
+    if output_dt is not None:
+        every = output_dt if method != "rk4" else dt * max(1, round(output_dt / dt))
+        return int(duration / every) + 2
+    if method == "rk4":
+        return int(round(duration / dt)) + 1
+    return int(max(1000, duration / 1e-5)) + 1
+
+
+def memory_available() -> float | None:
+    """Memory available to a new allocation (bytes): Linux's ``MemAvailable``, else the
+    free physical memory; None when unknown."""
+    try:
+        with open("/proc/meminfo", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("MemAvailable:"):
+                    return float(line.split()[1]) * 1024.0
+    except OSError:
+        pass
+    try:
+        return float(os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE"))
+    except (ValueError, OSError, AttributeError):
+        return None
+
+
+def check_output_size(duration: float, dt: float, output_dt: float | None,
+                      method: str) -> None:  # fmt: skip
+    """Refuse a run whose histories would not fit in memory, before it allocates them.
+
+    Raises
+    ------
+    OutputTooLargeError
+        With the size, the memory available and an ``output_dt`` that fits.
+    """
+    available = memory_available()
+    rows = output_rows(duration, dt, output_dt, method)
+    nbytes = float(rows) * ROW_BYTES
+    if available is None or nbytes <= MEMORY_SHARE * available:
+        return
+    fits = None
+    for candidate in (k * 10.0**e for e in range(-3, 4) for k in (1.0, 2.0, 5.0)):
+        if candidate >= dt and output_rows(duration, dt, candidate, method) * ROW_BYTES <= \
+                0.5 * MEMORY_SHARE * available:  # fmt: skip
+            fits = candidate
+            break
+    hint = f"give output_dt (e.g. {fits:g} s)" if fits else "give output_dt"
+    raise OutputTooLargeError(
+        f"the histories of duration = {duration:g} s ({rows:.3g} rows) would need about "
+        f"{nbytes / 1e9:.3g} GB, more than the {MEMORY_SHARE * available / 1e9:.3g} GB "
+        f"a run may take ({MEMORY_SHARE:.0%} of the memory available): {hint} or a shorter "
+        "duration", rows, nbytes, available, fits)
 
 
 def integrate_model(
@@ -308,11 +437,13 @@ def simulate(
     _check_positive("rtol", rtol, "", 0.0, 0.1)
     if method not in METHODS:
         raise ValueError(f"method = {method!r} is invalid: must be one of {', '.join(METHODS)}")
+    check_excitation(excitation, (SingleDefect, InitialDisplacement, SampledTrack))
     if model is None:
         model = Model(vehicle, creep_law=creep_law)
     x_init = _initial_state(model, excitation, x0)
     if dt is None:
         dt = auto_step(model, speed)
+    check_output_size(duration, dt, output_dt, method)
     route = None if curve is None else curve.route()
     t, x, code, stats = integrate_model(
         model, speed, duration, x_init, excitation=excitation, method=method, dt=dt,

@@ -111,6 +111,24 @@ class SampledTrack:
         return self.s0 + self.ds * (len(self.alignment) - 1)
 
 
+def check_excitation(excitation: object, accepted: tuple[type, ...],
+                     name: str = "excitation") -> object:  # fmt: skip
+    """Return ``excitation`` if it is None or one of the ``accepted`` types.
+
+    Raises
+    ------
+    TypeError
+        Naming the value and the accepted types, e.g. ``excitation = 'bump' is invalid:
+        must be a SingleDefect or SampledTrack (e.g. railhunt.SingleDefect(amplitude=0.008,
+        wavelength=20.0)), or None``.
+    """
+    if excitation is None or isinstance(excitation, accepted):
+        return excitation
+    names = " or ".join(t.__name__ for t in accepted)
+    raise TypeError(f"{name} = {excitation!r} is invalid: must be a {names} (e.g. "
+                    "railhunt.SingleDefect(amplitude=0.008, wavelength=20.0)), or None")
+
+
 def encode(excitation: object) -> tuple[np.ndarray, np.ndarray]:
     """Arrays that describe the track to the compiled right-hand side.
 

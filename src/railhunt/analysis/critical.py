@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -21,15 +21,20 @@ from railhunt.analysis.curving import EquilibriumPath
 from railhunt.analysis.search import bracket_and_bisect, check_search
 from railhunt.curve import Curve
 from railhunt.kernel.integrators import OK, STATUS_NAMES
-from railhunt.kernel.layout import N_STATE, Y_W1
+from railhunt.kernel.layout import N_STATE, WHEELSET_Y, Y_W1
 from railhunt.model import Model
 from railhunt.results import Columns, ResultDisplay, Row
 from railhunt.simulation import Y_LIMIT, auto_step, excitation_end_time, integrate_model
-from railhunt.track import SingleDefect
+from railhunt.track import SampledTrack, SingleDefect, check_excitation
 from railhunt.units import kmh_to_ms
 from railhunt.vehicle import Vehicle
 
 STABLE, HUNTING = "stable", "hunting"
+
+#: A run counts as decayed only below this share of its excitation's size (and below
+#: :attr:`Judgement.decay_amplitude`): a verdict is never taken on a motion that is still
+#: as large as what set it off (a 0.01 mm defect is not "decayed" at 0.02 mm).
+DECAY_SHARE = 0.1
 
 
 @dataclass(frozen=True)
@@ -195,6 +200,92 @@ def judge(
     return None, amplitude, rate
 
 
+@dataclass(frozen=True)
+class RunVerdict:
+    """The stability verdict on one finished run (:func:`judge_run`), apart from the
+    solver's status, which only says how the integration ended.
+
+    Attributes
+    ----------
+    verdict : {"decays", "hunting", "undecided"}
+        ``"decays"``: the motion dies out; ``"hunting"``: it settles on a limit cycle,
+        keeps growing or leaves the track; ``"undecided"``: the run cannot tell.
+    amplitude : float
+        Latest envelope of the leading wheelset's lateral displacement (m).
+    growth_rate : float
+        Slope of the envelope's logarithm over the last window (1/s); NaN if unknown.
+    text : str
+        The verdict in words, e.g. ``"hunting: limit cycle of 9.63 mm"``.
+    """
+
+    verdict: str
+    amplitude: float
+    growth_rate: float
+    text: str
+
+    @property
+    def short(self) -> str:
+        """The verdict with the amplitude when hunting, e.g. ``"hunting, 9.63 mm"``."""
+        if self.verdict == "hunting" and math.isfinite(self.amplitude):
+            return f"hunting, {self.amplitude * 1e3:.3g} mm"
+        return self.verdict
+
+
+def judge_run(result: object, judgement: Judgement | None = None,
+              two_sided: bool = False) -> RunVerdict:  # fmt: skip
+    """Judge a finished run of :func:`railhunt.simulate` by its leading wheelset, after the
+    last wheelset has left the excitation, as the critical-speed search judges a trial.
+
+    ``two_sided``: judge the swing about the run's last mean position (a run in a curve,
+    whose equilibrium is off the track centre) instead of the distance from the centre.
+    """
+    judgement = judgement or Judgement()
+    t, y = np.asarray(result.t), np.asarray(result["y_w1"])
+    if result.status == "derailed":
+        amp = float(np.max(np.abs(y[-50:])))
+        return RunVerdict("hunting", amp, math.nan, f"hunting: left the track ({result.message})")
+    if result.status != "ok":
+        return RunVerdict("undecided", math.nan, math.nan, f"undecided: {result.message}")
+    t_exc = float(result.excitation_end)
+    if t[-1] <= t_exc:
+        return RunVerdict("undecided", math.nan, math.nan, "undecided: the run ended before "
+                          "the last wheelset left the excitation")  # fmt: skip
+    if two_sided:
+        y = y - float(np.median(y[t >= t[-1] - 1.0]))
+    verdict, amp, rate = judge(t, y, t_exc, judgement, two_sided=two_sided)
+    size = f"{amp * 1e3:.3g} mm"
+    if verdict == STABLE:
+        return RunVerdict("decays", amp, rate, f"decays (below {judgement.decay_amplitude * 1e3:g}"
+                          " mm at the end)")  # fmt: skip
+    if verdict == HUNTING:
+        return RunVerdict("hunting", amp, rate, f"hunting: limit cycle of {size}")
+    if math.isnan(rate):
+        return RunVerdict("undecided", amp, rate, f"undecided: {size} at the end; give a "
+                          "longer duration")  # fmt: skip
+    if rate < 0:
+        return RunVerdict("decays", amp, rate, f"decays: {size} at the end, falling "
+                          f"({rate:.3g} 1/s)")  # fmt: skip
+    return RunVerdict("hunting", amp, rate, f"hunting: {size} at the end, growing "
+                      f"({rate:+.3g} 1/s)")  # fmt: skip
+
+
+def excitation_size(excitation: object, x0: np.ndarray | None = None,
+                    reference: np.ndarray | None = None) -> float:  # fmt: skip
+    """Size of what sets a run off (m): the largest lateral offset of the track input (a
+    defect's amplitude, a sampled track's largest alignment) and of the wheelsets' start
+    from the equilibrium ``reference`` (default the centred state); 0 for none."""
+    size = 0.0
+    if isinstance(excitation, SingleDefect):
+        size = abs(excitation.amplitude)
+    elif isinstance(excitation, SampledTrack) and len(excitation.alignment):
+        size = float(np.max(np.abs(excitation.alignment)))
+    if x0 is not None:
+        start = np.asarray(x0, dtype=float)[WHEELSET_Y]
+        ref = 0.0 if reference is None else np.asarray(reference, dtype=float)[WHEELSET_Y]
+        size = max(size, float(np.max(np.abs(start - ref))))
+    return size
+
+
 def run_until_verdict(
     model: Model,
     speed_kmh: float,
@@ -250,6 +341,9 @@ def run_until_verdict(
     y_ref = 0.0 if reference is None else float(reference[Y_W1])
     if x0 is None:
         x0 = np.zeros(N_STATE) if reference is None else reference
+    size = excitation_size(excitation, x0, reference)
+    if 0 < DECAY_SHARE * size < judgement.decay_amplitude:
+        judgement = replace(judgement, decay_amplitude=DECAY_SHARE * size)
     t0, x_start = 0.0, np.asarray(x0, dtype=float)
     duration = t_exc + judgement.chunk
     ts: list[np.ndarray] = []
@@ -351,6 +445,7 @@ def critical_speed(
     """
     if excitation is None:
         excitation = SingleDefect()
+    check_excitation(excitation, (SingleDefect, SampledTrack))
     judgement = judgement or Judgement()
     check_search(start_kmh, step_kmh, tol_kmh, min_kmh, max_kmh)
     model = Model(vehicle, creep_law=creep_law, contact=contact)

@@ -7,8 +7,11 @@ the simulated displacement after the transient. :func:`hunting_frequency` does b
 simulates the vehicle released from an initial lateral displacement of its wheelsets,
 judges the run (decay or limit cycle, :func:`railhunt.analysis.critical.judge`) and
 reports the matching frequency. For a limit cycle it also refines the orbit by shooting
-(:func:`railhunt.analysis.periodic.periodic_orbit`) and reports ``1 / period``, which is
-exact where the FFT is limited by its resolution.
+(:func:`railhunt.analysis.periodic.periodic_orbit`) from the state at the end of the run,
+settled or not, and reports ``1 / period``, which is exact where the FFT is limited by
+its resolution. ``source`` says which estimate was used: ``"limit-cycle"`` (the orbit) or
+``"limit-cycle-fft"`` (the FFT's peak, when no orbit was accepted; ``orbit_rejected`` says
+why); :func:`frequency_kind` groups both as the limit cycle's frequency.
 """
 
 from __future__ import annotations
@@ -21,12 +24,23 @@ import numpy as np
 from railhunt.analysis.critical import HUNTING, STABLE, Judgement, run_until_verdict
 from railhunt.analysis.linear import eigen_analysis
 from railhunt.analysis.periodic import periodic_orbit, phase_origin
-from railhunt.kernel.layout import FORCES, N_DAMPER, N_STATE, WHEELSET_Y, Y_W1
+from railhunt.kernel.layout import FORCES, N_DAMPER, N_STATE, RATE0, WHEELSET_Y, Y_W1
 from railhunt.model import Model
 from railhunt.results import Columns, ResultDisplay, Row
-from railhunt.simulation import auto_step
+from railhunt.simulation import auto_step, integrate_model
+from railhunt.track import SampledTrack, SingleDefect, check_excitation
 from railhunt.units import kmh_to_ms
 from railhunt.vehicle import Vehicle
+
+#: Sources of a limit cycle's frequency: the orbit found by shooting, the FFT's peak.
+LIMIT_CYCLE_SOURCES = ("limit-cycle", "limit-cycle-fft")
+
+
+def frequency_kind(source: str) -> str:
+    """What a frequency ``source`` measures: ``"limit-cycle"`` for both of the limit cycle's
+    estimates (:data:`LIMIT_CYCLE_SOURCES`), else the source itself (``"eigenvalue"``,
+    ``"limit-exceeded"``). A frequency jump is a change of kind, not of estimate."""
+    return "limit-cycle" if source in LIMIT_CYCLE_SOURCES else source
 
 
 def dominant_frequency(y: np.ndarray, dt: float) -> tuple[float, np.ndarray, np.ndarray]:
@@ -82,8 +96,11 @@ class HuntingFrequency(ResultDisplay):
         else the limit cycle's (``orbit_frequency_hz`` where shooting converged, otherwise
         ``fft_frequency_hz``).
     source : str
-        ``"eigenvalue"``, ``"limit-cycle"``, or ``"limit-exceeded"`` when the run left the
-        derailment limit (or diverged) before settling: no frequency (NaN).
+        Which estimate ``frequency_hz`` is: ``"eigenvalue"``; ``"limit-cycle"`` (``1 /
+        period`` of the orbit found by shooting from the end of the run);
+        ``"limit-cycle-fft"`` (the FFT's peak: no orbit was accepted, ``orbit_rejected``
+        says why); or ``"limit-exceeded"`` when the run left the derailment limit (or
+        diverged) before settling: no frequency (NaN).
     verdict : str
         ``"stable"`` (the disturbance decays) or ``"hunting"``.
     amplitude : float
@@ -103,6 +120,10 @@ class HuntingFrequency(ResultDisplay):
         velocities of the four yaw dampers' viscous parts (m/s), for plots such as Fig. 8.
     blowoff_velocity : float
         The dampers' blow-off velocity ``v_u`` (m/s).
+    orbit_rejected : str
+        Why the shooting's orbit was not used ("" when it was, or when the motion decays):
+        shooting did not converge, fell onto the equilibrium, or found another orbit than
+        the simulated cycle.
     """
 
     speed_kmh: float
@@ -118,6 +139,7 @@ class HuntingFrequency(ResultDisplay):
     y: np.ndarray
     damper_velocity: np.ndarray
     blowoff_velocity: float
+    orbit_rejected: str = ""
 
     def _summary(self) -> list[Row]:
         return [("speed", self.speed_kmh, "km/h"), ("hunting frequency", self.frequency_hz, "Hz"),
@@ -140,7 +162,7 @@ class HuntingFrequency(ResultDisplay):
         out = {}
         for key in ("speed_kmh", "frequency_hz", "source", "verdict", "amplitude",
                     "eigen_frequency_hz", "eigen_damping_ratio", "fft_frequency_hz",
-                    "orbit_frequency_hz"):  # fmt: skip
+                    "orbit_frequency_hz", "orbit_rejected"):  # fmt: skip
             value = getattr(self, key)
             out[key] = None if isinstance(value, float) and math.isnan(value) else value
         return out
@@ -202,6 +224,7 @@ def hunting_frequency(
         raise ValueError(
             f"initial_amplitude = {initial_amplitude!r} m is invalid: must be in (0, 0.02] m"
         )
+    check_excitation(excitation, (SingleDefect, SampledTrack))
     judgement = judgement or Judgement()
     if not (math.isfinite(fft_window) and 4 <= fft_window <= judgement.max_duration):
         raise ValueError(f"fft_window = {fft_window!r} s is invalid: must be in [4, "
@@ -231,27 +254,107 @@ def hunting_frequency(
                                 math.nan, math.nan, t, y, vd, v_u)  # fmt: skip
     f_fft, f_orbit = math.nan, math.nan
     if code == 0:
-        # Resample the end of the record to a fixed step (the paper's linear interpolation).
-        t_end = t[-1]
-        t_fix = np.arange(max(t[0], t_end - fft_window), t_end, 1.0 / sample_rate)
-        f_fft, _, _ = dominant_frequency(np.interp(t_fix, t, y), 1.0 / sample_rate)
-        amp = float(np.max(np.abs(y[t >= t_end - 2.0])))
+        f_fft, amp = _spectrum_peak(t, y, fft_window, sample_rate)
+        rejected = "not refined (refine=False)" if refine else "the FFT found no peak"
         if refine and math.isfinite(f_fft) and f_fft > 0:
-            k = phase_origin(t, y)
-            try:
-                orbit = periodic_orbit(model, speed_kmh, x[k], 1.0 / f_fft, dt=dt)
-                # Accept the refined orbit only if it is the simulated cycle.
-                if (abs(orbit.frequency_hz - f_fft) < 0.1 * f_fft
-                        and abs(orbit.amplitude - amp) < 0.2 * amp):  # fmt: skip
-                    f_orbit, amp = orbit.frequency_hz, orbit.amplitude
-            except RuntimeError:
-                pass
-        f = f_orbit if math.isfinite(f_orbit) else f_fft
-        return HuntingFrequency(speed_kmh, f, "limit-cycle", HUNTING, amp, f_eig, zeta, f_fft,
-                                f_orbit, t, y, vd, v_u)  # fmt: skip
+            orbit, rejected = _refine_orbit(model, speed_kmh, t, x, dt, f_fft, amp)
+            extended = 0.0
+            while orbit is None and extended < REFINE_EXTENSION:
+                # Not yet close enough to the cycle for Newton: run on, and shoot again.
+                tt, xx, more, _ = integrate_model(model, speed, REFINE_CHUNK, x[-1],
+                                                  t0=float(t[-1]), excitation=excitation,
+                                                  dt=dt, output_dt=2e-3)  # fmt: skip
+                if more != 0:
+                    break
+                t, x = np.concatenate([t, tt[1:]]), np.concatenate([x, xx[1:]])
+                extended += REFINE_CHUNK
+                f_fft, amp = _spectrum_peak(t, x[:, Y_W1], fft_window, sample_rate)
+                orbit, _ = _refine_orbit(model, speed_kmh, t, x, dt, f_fft, amp)
+            if orbit is not None:
+                f_orbit, amp, rejected = orbit.frequency_hz, orbit.amplitude, ""
+            elif extended:
+                rejected += f" (and again after running {extended:g} s longer)"
+        y = x[:, Y_W1]
+        vd = model.damper_velocities(x[:, FORCES])
+        f, source = (f_orbit, "limit-cycle") if math.isfinite(f_orbit) else (f_fft,
+                                                                              "limit-cycle-fft")
+        return HuntingFrequency(speed_kmh, f, source, HUNTING, amp, f_eig, zeta, f_fft,
+                                f_orbit, t, y, vd, v_u, rejected)  # fmt: skip
     # The run left the track (derailment limit) or diverged: no frequency.
     return HuntingFrequency(speed_kmh, math.nan, "limit-exceeded", HUNTING, math.nan, f_eig,
                             zeta, math.nan, math.nan, t, y, vd, v_u)  # fmt: skip
+
+
+#: When shooting from the end of a run fails, the run goes on in chunks of this many
+#: seconds, up to this many in all, and shooting is tried again after each (s).
+REFINE_CHUNK, REFINE_EXTENSION = 5.0, 10.0
+
+
+def _spectrum_peak(t: np.ndarray, y: np.ndarray, window: float,
+                   rate: float) -> tuple[float, float]:  # fmt: skip
+    """The FFT's peak frequency of the last ``window`` s of ``y`` (Hz), resampled to ``rate``
+    (Hz) by linear interpolation (the paper's), and the largest ``|y|`` of the last 2 s."""
+    t_end = t[-1]
+    t_fix = np.arange(max(t[0], t_end - window), t_end, 1.0 / rate)
+    f_fft, _, _ = dominant_frequency(np.interp(t_fix, t, y), 1.0 / rate)
+    return f_fft, float(np.max(np.abs(y[t >= t_end - 2.0])))
+
+
+def _extremum_state(model: Model, speed_kmh: float, t: np.ndarray, x: np.ndarray, k: int,
+                    dt: float) -> np.ndarray:  # fmt: skip
+    """The state at the maximum of ``y_w1`` near sample ``k`` of a record, located to the
+    integration step: the record is stored at a coarser interval, and shooting's phase
+    condition (``dy_w1/dt = 0``) needs the state right at the extremum."""
+    if k < 1 or k + 1 >= t.size:
+        return x[k]
+    span = float(t[k + 1] - t[k - 1])
+    tt, xx, code, _ = integrate_model(model, kmh_to_ms(speed_kmh), span, x[k - 1],
+                                      t0=float(t[k - 1]), dt=dt)  # fmt: skip
+    if code != 0 or tt.size < 3:
+        return x[k]
+    rate = xx[:, RATE0 + Y_W1]
+    j = int(np.argmin(np.abs(rate) + np.where(xx[:, Y_W1] > 0, 0.0, np.inf)))
+    return xx[j] if math.isfinite(rate[j]) else x[k]
+
+
+def _maxima(y: np.ndarray, count: int) -> list[int]:
+    """Indices of the last ``count`` local maxima of ``y``, the latest first."""
+    k = np.flatnonzero((y[1:-1] >= y[:-2]) & (y[1:-1] > y[2:])) + 1
+    return [int(i) for i in k[::-1][:count]] or [phase_origin(np.arange(y.size), y)]
+
+
+def _refine_orbit(model: Model, speed_kmh: float, t: np.ndarray, x: np.ndarray, dt: float,
+                  f_fft: float, amp: float) -> tuple[object | None, str]:  # fmt: skip
+    """Shoot the limit cycle from the end of a run (settled or not).
+
+    Tries the last three maxima of ``y_w1``, each located to the step. An orbit is the
+    simulated cycle when its frequency is within 10 % of the FFT's and either its amplitude
+    within 20 % of the run's last one or, for a run still on its way, it is stable (the
+    attractor the run heads for).
+
+    Returns
+    -------
+    orbit : PeriodicOrbit or None
+        The accepted orbit.
+    rejected : str
+        Why no orbit was accepted ("" when one was).
+    """
+    reasons: list[str] = []
+    for k in _maxima(x[:, Y_W1], 3):
+        start = _extremum_state(model, speed_kmh, t, x, k, dt)
+        try:
+            orbit = periodic_orbit(model, speed_kmh, start, 1.0 / f_fft, dt=dt)
+        except RuntimeError as exc:
+            reasons.append(str(exc))
+            continue
+        same_f = abs(orbit.frequency_hz - f_fft) < 0.1 * f_fft
+        if same_f and (abs(orbit.amplitude - amp) < 0.2 * amp or orbit.stable):
+            return orbit, ""
+        reasons.append(f"the orbit found ({orbit.frequency_hz:.4g} Hz, "
+                       f"{orbit.amplitude * 1e3:.3g} mm, {'stable' if orbit.stable else 'unstable'}"
+                       f") is not the simulated cycle (FFT {f_fft:.4g} Hz, last amplitude "
+                       f"{amp * 1e3:.3g} mm)")  # fmt: skip
+    return None, reasons[0] if reasons else "no maximum to shoot from"
 
 
 def frequency_jump(speeds_kmh: np.ndarray, frequency_hz: np.ndarray,
@@ -259,10 +362,11 @@ def frequency_jump(speeds_kmh: np.ndarray, frequency_hz: np.ndarray,
     """Where the frequency source switches from eigenvalue to limit cycle (Fig. 7b).
 
     Returns ``(speed_kmh, f_before_hz, f_after_hz)`` at the first switch (the speed is the
-    midpoint of the two neighbouring speeds), or None when there is none.
+    midpoint of the two neighbouring speeds), or None when there is none. Either estimate
+    of the limit cycle (:func:`frequency_kind`) counts.
     """
     for i in range(1, len(sources)):
-        if sources[i - 1] == "eigenvalue" and sources[i] == "limit-cycle":
+        if sources[i - 1] == "eigenvalue" and frequency_kind(sources[i]) == "limit-cycle":
             return (0.5 * (speeds_kmh[i - 1] + speeds_kmh[i]), float(frequency_hz[i - 1]),
                     float(frequency_hz[i]))  # fmt: skip
     return None

@@ -53,8 +53,15 @@ def read_channel(
         The matched header.
     """
     path = Path(path)
-    with path.open(newline="") as fh:
-        rows = [r for r in csv.reader(fh) if any(c.strip() for c in r)]
+    try:
+        with path.open(newline="", encoding="utf-8") as fh:
+            rows = [r for r in csv.reader(fh) if any(c.strip() for c in r)]
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"{path}: not a text CSV file (byte {exc.start} is not UTF-8 text); "
+                         "expected a header row with a time column and the channels, as "
+                         "'railhunt simulate --csv' writes") from None
+    except csv.Error as exc:
+        raise ValueError(f"{path}: not a CSV file ({exc})") from None
     if not rows:
         raise ValueError(f"{path}: the file is empty; expected a header row with a time column")
     header = [h.strip() for h in rows[0]]

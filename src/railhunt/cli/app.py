@@ -37,6 +37,19 @@ wavelengths in m; times in s; frequencies in Hz. Vehicle parameters
 exactly as in the vehicle TOML files.
 
 \b
+Output files: an output file that exists is not replaced; the command stops
+before it computes anything unless --overwrite is given (a study's --out may
+also be continued with --resume). Every output path is checked before the
+work starts. Every CSV file gets its metadata beside it (FILE.meta.json; a
+study's results file FILE.sweep.json) and every JSON output carries
+railhunt_version, the vehicle's name and vehicle_fingerprint (a hash of its
+parameters), so that a number can be traced.
+
+\b
+Long runs: a command whose estimated work exceeds a minute says so on stderr
+before it starts ('railhunt: note: this will take about ...').
+
+\b
 Examples:
   railhunt simulate --speed 320 --png run.png
   railhunt eigen --from 100 --to 500 --png locus.png

@@ -18,6 +18,14 @@ from typing import TYPE_CHECKING, Any
 import click
 
 from railhunt.cli.errors import CliError, user_input
+from railhunt.cli.files import (  # noqa: F401 - the output files' options, shared from here
+    OVERWRITE_POLICY,
+    check_output_folder,
+    check_outputs,
+    file_option,
+    overwrite_option,
+    write_sidecar,
+)
 from railhunt.cli.rules import Requires
 
 if TYPE_CHECKING:
@@ -30,9 +38,11 @@ __all__ = [
     "CURVE_LEAD_IN",
     "CURVE_RULES",
     "MEASURED_TAPER",
+    "OVERWRITE_POLICY",
     "build_curve",
     "build_vehicle",
     "cant_option",
+    "check_output_folder",
     "check_outputs",
     "curve_json",
     "curve_options",
@@ -47,6 +57,7 @@ __all__ = [
     "measured_track",
     "method_options",
     "number_range",
+    "overwrite_option",
     "radius_option",
     "random_track_options",
     "results_argument",
@@ -54,6 +65,7 @@ __all__ = [
     "speed_count",
     "transition_option",
     "vehicle_options",
+    "write_sidecar",
 ]
 
 Decorator = Callable[[Callable[..., Any]], Callable[..., Any]]
@@ -459,25 +471,6 @@ def method_options(func: Callable[..., Any], stochastic: bool = False) -> Callab
 
 
 # --------------------------------------------------------------------------- files
-
-
-def file_option(flag: str, dest: str, help: str, metavar: str | None = "FILE") -> Decorator:
-    """An output file option (``--png FILE``, ``--csv FILE``, ...); see :func:`check_outputs`."""
-    return click.option(flag, dest, type=click.Path(dir_okay=False, path_type=Path),
-                        metavar=metavar, help=help)  # fmt: skip
-
-
-def check_outputs(**files: Path | None) -> None:
-    """Fail early (before a long run) when an output file's folder does not exist.
-
-    Parameters
-    ----------
-    **files : Path or None
-        Output files by option name without the dashes (``csv=...``, ``png=...``).
-    """
-    for option, path in files.items():
-        if path is not None and not path.resolve().parent.is_dir():
-            raise CliError(f"--{option} {path}: folder {str(path.parent)!r} does not exist")
 
 
 #: The RESULTS argument of the commands that read a sweep's results file.

@@ -14,12 +14,15 @@ from collections.abc import Callable, Iterator
 from typing import Any
 
 __all__ = [
+    "announce",
+    "command_record",
     "fmt",
     "json_safe",
     "linear_critical_speed_line",
     "show_progress",
     "spinner",
     "stdout_console",
+    "traced",
     "trial_progress",
 ]
 
@@ -120,6 +123,34 @@ def json_safe(obj: Any) -> Any:
     except (TypeError, ValueError):
         return str(obj)
     return value if math.isfinite(value) else None
+
+
+def traced(data: dict[str, Any], vehicle: Any = None) -> dict[str, Any]:
+    """``data`` (a command's JSON object) with the keys that trace it: ``railhunt_version``
+    and, with a vehicle, ``vehicle`` and ``vehicle_fingerprint``
+    (:func:`railhunt.provenance.provenance`); the keys already there come first."""
+    from railhunt.provenance import provenance
+
+    return {**data, **provenance(vehicle)}
+
+
+def command_record() -> dict[str, Any]:
+    """The running command and its options (as parsed), for a file's metadata sidecar."""
+    import click
+
+    ctx = click.get_current_context(silent=True)
+    if ctx is None:
+        return {}
+    return {"command": f"railhunt {ctx.info_name}", "options": json_safe(ctx.params)}
+
+
+def announce(work: Any) -> None:
+    """Say on stderr, before it starts, that a computation will take more than a minute
+    (``work`` is a :class:`railhunt.workload.Workload`; nothing when it is shorter)."""
+    import click
+
+    if work.notable:
+        click.echo(f"railhunt: note: this will take {work.describe()}", err=True)
 
 
 def linear_critical_speed_line(linear: Any, curved: bool = False) -> str:

@@ -16,39 +16,105 @@ from typing import Any
 import click
 
 from railhunt.cli.errors import CliError, user_input
+from railhunt.cli.options import check_outputs
+from railhunt.cli.output import announce
 from railhunt.cli.rules import Excludes, Requires
 
-__all__ = ["STUDY_RULES", "check_workers_option", "optional_out_rules", "report_lost",
-           "running_study", "study_options"]  # fmt: skip
+__all__ = ["CONNECT_RULE", "OUTPUT_SECONDS", "STUDY_RULES", "connect_timeout_option",
+           "scheduler_client", "announce_study", "check_study_outputs",
+           "check_workers_option", "optional_out_rules", "report_lost", "running_study",
+           "study_options"]  # fmt: skip
 
 Decorator = Callable[[Callable[..., Any]], Callable[..., Any]]
+
+#: The rule of ``--connect-timeout``: it is about ``--scheduler``.
+CONNECT_RULE = Requires("--connect-timeout", "--scheduler",
+                        "{a} is how long to try to reach {b}: give {b} ADDRESS")
 
 #: The rules of every study command.
 STUDY_RULES = (
     Excludes("--resume", "--overwrite", "{a} and {b} exclude each other"),
     Excludes("--scheduler", "--workers",
              "--workers sets the local cluster; a --scheduler cluster has its own"),
+    CONNECT_RULE,
 )  # fmt: skip
 
 
+def connect_timeout_option(default: float = 30.0) -> Decorator:
+    """``--connect-timeout S``: how long to try to reach ``--scheduler``, in (0, 3600] s."""
+    from railhunt.cli.options import number_range
+
+    return click.option("--connect-timeout", "connect_timeout", type=float, default=default,
+                        show_default=True, metavar="S",
+                        callback=number_range("s", 0.0, 3600.0),
+                        help="How long to try to reach --scheduler (s); a refused port "
+                        "fails at once.")  # fmt: skip
+
+
+@contextlib.contextmanager
+def scheduler_client(scheduler: str | None, connect_timeout: float) -> Iterator[Any]:
+    """A Dask client joined to ``--scheduler`` (None without one), closed on exit; a
+    scheduler that cannot be joined is one ``railhunt: error:`` line naming it."""
+    if scheduler is None:
+        yield None
+        return
+    from railhunt.studies.execute import SchedulerError, join_scheduler
+
+    try:
+        client = join_scheduler(scheduler, connect_timeout)
+    except SchedulerError as exc:
+        raise CliError(f"--scheduler {scheduler}: {exc}") from None
+    try:
+        yield client
+    finally:
+        try:
+            client.close()
+        except Exception:  # noqa: BLE001 - shutting down; nothing left to save
+            pass
+
+
 def optional_out_rules() -> tuple[Requires, ...]:
-    """The rules of a study whose ``--out`` may be left out: ``--resume`` and
-    ``--overwrite`` are about that file."""
-    return (Requires(("--resume", "--overwrite"), "--out",
+    """The rules of a study whose ``--out`` may be left out: ``--resume`` is about that
+    file (``--overwrite`` is also about the study's other output files)."""
+    return (Requires("--resume", "--out",
                      "{a} is about the results file: give {b} FILE"),)  # fmt: skip
+
+
+def check_study_outputs(out: Path | None, resume: bool, overwrite: bool,
+                        **files: Path | None) -> None:  # fmt: skip
+    """Check a study's results file ``out`` and its other output ``files`` before it starts.
+
+    ``out`` may exist with ``--resume`` (it is continued) or ``--overwrite`` (replaced);
+    the other files follow the overwrite policy of :func:`railhunt.cli.options.check_outputs`.
+    """
+    from railhunt.studies.store import journal_path
+
+    check_outputs(overwrite=overwrite, **files)
+    if out is None:
+        return
+    for option, path in files.items():
+        if path is not None and path.resolve() == out.resolve():
+            raise CliError(f"--out and --{option} both name {out}: give each its own file")
+    exists = out.exists() or journal_path(out).exists()
+    if exists and not (resume or overwrite):
+        raise CliError(f"--out {out} exists: continue it with --resume, replace it with "
+                       "--overwrite, or choose another file")  # fmt: skip
+    check_outputs(overwrite=True, out=out)
 
 
 def study_options(out_required: bool = True,
                   out_help: str = "Results file (.csv, or .parquet with pyarrow).",
                   ) -> Decorator:  # fmt: skip
-    """Add ``--out FILE``, ``--resume``, ``--overwrite``, ``--workers N`` and
-    ``--scheduler ADDRESS`` (in this order in the help) to a study command.
+    """Add ``--out FILE``, ``--resume``, ``--overwrite``, ``--workers N``, ``--scheduler
+    ADDRESS`` and ``--connect-timeout S`` (in this order in the help) to a study command.
 
-    The command receives ``out`` (a Path or None), ``resume``, ``overwrite``, ``workers``
-    and ``scheduler``; check ``workers`` with :func:`check_workers_option`.
+    The command receives ``out`` (a Path or None), ``resume``, ``overwrite``, ``workers``,
+    ``scheduler`` and ``connect_timeout``; check ``workers`` with
+    :func:`check_workers_option`, join the scheduler with :func:`scheduler_client`.
     """
 
     def decorate(func: Callable[..., Any]) -> Callable[..., Any]:
+        func = connect_timeout_option()(func)
         func = click.option("--scheduler", metavar="ADDRESS",
                             help="Run on the Dask cluster of this scheduler (e.g. "
                             "tcp://10.0.0.5:8786).")(func)  # fmt: skip
@@ -56,13 +122,56 @@ def study_options(out_required: bool = True,
                             help="Worker processes on this machine [default: all cores; 1: "
                             "no Dask].")(func)  # fmt: skip
         func = click.option("--overwrite", is_flag=True,
-                            help="Replace FILE if it exists.")(func)  # fmt: skip
+                            help="Replace FILE (and any other output file) if it exists.")(func)
         func = click.option("--resume", is_flag=True,
                             help="Continue FILE: compute only its missing points.")(func)
         return click.option("--out", "out", type=click.Path(dir_okay=False, path_type=Path),
                             required=out_required, metavar="FILE", help=out_help)(func)
 
     return decorate
+
+
+#: The parameters that set the automatic step (the yaw dampers' relaxation rates).
+STEP_PARAMETERS = frozenset({"C_d1", "C_d2", "K_d"})
+
+#: Simulated time (s) of one point per study output: the nonlinear critical-speed search
+#: (~8 trials), the hunting-frequency run and shooting; the linear outputs cost no steps.
+OUTPUT_SECONDS = {"critical_speed": 120.0, "hunting_frequency": 60.0}
+
+
+def announce_study(vehicle: Any, points: list[Any], outputs: tuple[str, ...],
+                   workers: int | None, scheduler: str | None,
+                   what: str = "points") -> None:  # fmt: skip
+    """Announce a study of more than a minute before it starts (:mod:`railhunt.workload`).
+
+    The step is the smallest automatic step of the nominal vehicle and of the study's
+    points at the ends of each yaw damper parameter's range (where the step is set); a
+    point whose step is refused (a stiff damper) is left out: it fails alone, with the
+    reason in its row.
+    """
+    from railhunt import Model
+    from railhunt.simulation import StiffDamperError, auto_step
+    from railhunt.studies.execute import check_workers
+    from railhunt.units import kmh_to_ms
+    from railhunt.workload import workload
+
+    per_point = sum(OUTPUT_SECONDS.get(o, 0.0) for o in outputs)
+    if not points or per_point == 0.0:
+        return
+    names = {n for p in points for n in p.values if n in STEP_PARAMETERS}
+    extremes = [min(points, key=lambda p, n=n: p.values[n]) for n in names]
+    extremes += [max(points, key=lambda p, n=n: p.values[n]) for n in names]
+    steps = []
+    for values in [{}] + [p.values for p in extremes]:
+        try:
+            steps.append(auto_step(Model(vehicle.replace(**values)), kmh_to_ms(300.0)))
+        except (StiffDamperError, ValueError):
+            continue
+    if not steps:
+        return
+    n = 1 if scheduler is not None else check_workers(workers)
+    announce(workload(len(points) * per_point, min(steps),
+                      f"{len(points)} {what} of ~{per_point:.0f} s simulated", workers=n))
 
 
 def check_workers_option(workers: int | None) -> None:

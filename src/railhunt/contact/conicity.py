@@ -12,7 +12,11 @@ conicity through Klingel's formula ``lambda = 2 pi sqrt(e r0 / tan(gamma_e))``, 
 ``Delta_r(y)`` only. ``Delta_r`` is taken as tabulated, with *linear* interpolation between
 the table's points (the standard's data have steps at flange contact; a spline would ring).
 For pairs with ``Delta_r(0) != 0`` (different wheel diameters, case E5) the motion is
-centred on the equilibrium ``Delta_r(y_c) = 0``.
+centred on the equilibrium ``Delta_r(y_c) = 0``. A worn or cylindrical tread can have
+``Delta_r = 0`` over a band around the centre: the centre is then the band's middle, and
+for amplitudes whose oscillation stays inside the band the wheelset does not oscillate
+kinematically, so ``tan(gamma_e) = 0`` (EN 15302); beyond it the motion crosses the band
+freely between the restoring flanks, and the integration gives its wavelength.
 
 Annex C: the slope of the least-squares straight line through ``Delta_r(y)`` over
 ``[y_c - y_hat, y_c + y_hat]``, halved: ``tan(gamma_e) = slope / 2``.
@@ -46,21 +50,50 @@ def _table(y: np.ndarray, delta_r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return y, d
 
 
+def _flat_bands(y: np.ndarray, d: np.ndarray) -> list[tuple[float, float]]:
+    """The intervals ``[a, b]`` over which the interpolated ``Delta_r`` is exactly zero
+    (runs of two or more consecutive zero points)."""
+    bands = []
+    i = 0
+    while i < d.size:
+        if d[i] == 0.0:
+            j = i
+            while j + 1 < d.size and d[j + 1] == 0.0:
+                j += 1
+            if j > i:
+                bands.append((float(y[i]), float(y[j])))
+            i = j + 1
+        else:
+            i += 1
+    return bands
+
+
 def _centre(y: np.ndarray, d: np.ndarray) -> float:
-    """Equilibrium ``y_c`` where the interpolated ``Delta_r`` changes sign (nearest 0)."""
+    """Equilibrium ``y_c`` where the interpolated ``Delta_r`` changes sign (nearest 0); the
+    middle of a band where it is zero."""
+    bands = _flat_bands(y, d)
     s = np.sign(d)
     idx = np.nonzero(s[:-1] * s[1:] <= 0)[0]
     if idx.size == 0:
         raise ConicityError("delta_r does not change sign within the table: no centred "
                             "running position (is the table large enough?)")
-    cands = []
+    cands = [0.5 * (a + b) for a, b in bands]
     for i in idx:
+        if any(a <= y[i] and y[i + 1] <= b for a, b in bands):
+            continue  # inside a flat band: its middle stands for it
         if d[i] == d[i + 1]:
             cands.append(0.5 * (y[i] + y[i + 1]))
         else:
             cands.append(y[i] - d[i] * (y[i + 1] - y[i]) / (d[i + 1] - d[i]))
     cands = np.array(cands)
     return float(cands[np.argmin(np.abs(cands))])
+
+
+def _inside_flat_band(y: np.ndarray, d: np.ndarray, yc: float, amplitude: float) -> bool:
+    """True when ``[yc - amplitude, yc + amplitude]`` lies in a band of ``Delta_r = 0``."""
+    tol = 1e-12 * max(1.0, abs(yc))
+    return any(a - tol <= yc - amplitude and yc + amplitude <= b + tol
+               for a, b in _flat_bands(y, d))  # fmt: skip
 
 
 def _potential(y: np.ndarray, d: np.ndarray, yc: float):
@@ -159,7 +192,8 @@ def equivalent_conicity(
     Returns
     -------
     float
-        ``tan(gamma_e)`` (dimensionless).
+        ``tan(gamma_e)`` (dimensionless); 0 when the oscillation stays inside a band of
+        ``Delta_r = 0`` around the centre (no kinematic oscillation, EN 15302).
 
     Raises
     ------
@@ -174,6 +208,8 @@ def equivalent_conicity(
     y, d = _table(y, delta_r)
     if method == "regression":
         return equivalent_conicity_regression(y, d, amplitude)
+    if _inside_flat_band(y, d, _centre(y, d), amplitude):
+        return 0.0
     yc, y_plus, y_minus = _turning_points(y, d, amplitude)
 
     def rhs(_x: float, s: np.ndarray) -> np.ndarray:

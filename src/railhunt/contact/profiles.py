@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import math
 import re
+import warnings
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
@@ -144,7 +145,7 @@ _NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eEdD][-+]?\d+)?"
 
 
 def read_profile(
-    path: str | Path, kind: str | None = None, *, mirror_y: bool = False
+    path: str | Path, kind: str | None = None, *, mirror_y: bool = False, repair: bool = False
 ) -> Profile:
     """Read a profile file: SIMPACK ``.prw``/``.prr`` or two columns ``y z`` in mm.
 
@@ -159,11 +160,21 @@ def read_profile(
         (``.prw``/``.whe`` wheel, ``.prr``/``.rai`` rail).
     mirror_y : bool
         Mirror ``y`` after reading (for files whose field side is at negative ``y``).
+    repair : bool
+        Sort the points of a profile whose ``y`` is not monotonic (with a warning naming
+        the file and the first offending point) instead of refusing it.
 
     Returns
     -------
     Profile
         In metres, in the convention of the module docstring.
+
+    Raises
+    ------
+    ProfileError
+        An unreadable file, or (without ``repair``) points whose ``y`` goes back and
+        forth: the file and the first point out of order are named. A profile listed
+        from the field side to the flange (``y`` falling throughout) is monotonic.
     """
     path = Path(path)
     try:
@@ -178,6 +189,7 @@ def read_profile(
     else:
         y, z = _parse_columns(text, str(path))
         y, z = y * 1e-3, z * 1e-3
+    _check_monotonic(y, str(path), repair)
     if kind is None:
         suffix = path.suffix.lower()
         if suffix in (".prw", ".whe"):
@@ -233,6 +245,31 @@ def write_profile(profile: Profile, path: str | Path, comment: str = "") -> Path
                   "z (mm, positive downward)", *points]  # fmt: skip
     path.write_text("\n".join(lines) + "\n", encoding="utf-8")
     return path
+
+
+def _check_monotonic(y: np.ndarray, where: str, repair: bool) -> None:
+    """Refuse (or, with ``repair``, warn about) points whose ``y`` goes back and forth.
+
+    Points may run either way (rising or falling ``y``; repeats are dropped later); the
+    first point against the direction of the first step is named (1-based, in the order
+    of the file's points).
+    """
+    d = np.diff(y)
+    steps = d[d != 0.0]
+    if steps.size == 0:
+        return
+    direction = np.sign(steps[0])
+    against = np.flatnonzero(np.sign(d) == -direction)
+    if against.size == 0:
+        return
+    k = int(against[0]) + 1  # 0-based index of the point out of order
+    way = "rising" if direction > 0 else "falling"
+    text = (f"profile file {where!r}: y is not monotonic: point {k + 1} (y = {y[k] * 1e3:.4g} "
+            f"mm) goes back from point {k} (y = {y[k - 1] * 1e3:.4g} mm) while y was {way}")
+    if not repair:
+        raise ProfileError(text + "; fix the file, or read it with repair=True to sort the "
+                           "points")  # fmt: skip
+    warnings.warn(text + "; the points were sorted by y (repair=True)", stacklevel=3)
 
 
 def _parse_columns(text: str, where: str) -> tuple[np.ndarray, np.ndarray]:

@@ -23,6 +23,7 @@ def plot_time_history(
     path: str | os.PathLike[str],
     channel: str = "y_w1",
     phase_from: float = PHASE_FROM,
+    verdict: str | None = None,
 ) -> Path:
     """Plot a wheelset's lateral displacement history and its phase plane.
 
@@ -43,26 +44,30 @@ def plot_time_history(
     phase_from : float
         Start of the phase-plane window (s). When the run is shorter than that, the
         second half of the run is shown instead (and the title says so).
+    verdict : str, optional
+        The run's stability verdict (e.g. ``"hunting, 9.63 mm"``), shown in the title
+        apart from the solver's status (which only says how the integration ended).
 
     Returns
     -------
     pathlib.Path
         The file written.
     """
-    return save_figure(time_history_figure(result, channel, phase_from), path)
+    return save_figure(time_history_figure(result, channel, phase_from, verdict), path)
 
 
 def time_history_figure(result: SimulationResult, channel: str = "y_w1",
-                        phase_from: float = PHASE_FROM) -> Figure:  # fmt: skip
+                        phase_from: float = PHASE_FROM,
+                        verdict: str | None = None) -> Figure:  # fmt: skip
     """The figure of :func:`plot_time_history`, not saved."""
     fig = new_figure(11.0, 4.2)
     ax_t, ax_p = fig.subplots(1, 2, width_ratios=(1.6, 1.0))
-    _draw_time_history(ax_t, ax_p, result, channel, phase_from)
+    _draw_time_history(ax_t, ax_p, result, channel, phase_from, verdict)
     return fig
 
 
 def _draw_time_history(ax_t: Axes, ax_p: Axes, result: SimulationResult, channel: str,
-                       phase_from: float) -> None:  # fmt: skip
+                       phase_from: float, verdict: str | None = None) -> None:  # fmt: skip
     """Draw one run's displacement history on ``ax_t`` and its phase plane on ``ax_p``."""
     t = np.asarray(result.t)
     y = np.asarray(result[channel]) * 1e3
@@ -78,7 +83,8 @@ def _draw_time_history(ax_t: Axes, ax_p: Axes, result: SimulationResult, channel
     ax_t.axhline(0.0, color="0.5", lw=0.6)
     ax_t.set_xlabel("time t (s)")
     ax_t.set_ylabel(f"lateral displacement {channel} (mm)")
-    ax_t.set_title(f"{_wheelset_label(wheelset)} at {speed:.0f} km/h: {result.status}")
+    state = result.status if verdict is None else f"{verdict} (solver: {result.status})"
+    ax_t.set_title(f"{_wheelset_label(wheelset)} at {speed:.0f} km/h: {state}")
     ax_t.grid(True, alpha=0.3)
 
     start = phase_from

@@ -13,8 +13,10 @@ is counted as lost (not written) and a later ``resume`` computes it again.
 from __future__ import annotations
 
 import logging
+import math
 import os
 import signal
+import socket
 import warnings
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import ExitStack, contextmanager
@@ -137,10 +139,92 @@ def local_client(workers: int) -> Iterator[Any]:
         _close_quietly(cluster)
 
 
+class SchedulerError(OSError):
+    """A Dask scheduler that cannot be joined: nothing listens, no answer within the connect
+    timeout, or a server that speaks another protocol. The message is one line."""
+
+
+#: Default connect timeout for a Dask scheduler (s).
+CONNECT_TIMEOUT = 30.0
+
+
+def check_connect_timeout(timeout: float) -> float:
+    """A connect timeout (s), finite and in (0, 3600]."""
+    value = float(timeout)
+    if not (math.isfinite(value) and 0 < value <= 3600):
+        raise ValueError(f"connect_timeout = {timeout!r} s is invalid: must be in (0, 3600] s")
+    return value
+
+
+def probe_scheduler(address: str, timeout: float) -> None:
+    """Open and close a TCP connection to a ``tcp://HOST:PORT`` scheduler address.
+
+    A refused port fails at once (Dask itself retries until its timeout); other schemes
+    (``tls://``, ``ucx://`` ...) are left to Dask.
+
+    Raises
+    ------
+    SchedulerError
+        Not an address, connection refused, no answer within ``timeout`` s, or unreachable.
+    """
+    scheme, sep, rest = address.partition("://")
+    if not sep:
+        scheme, rest = "tcp", address
+    if scheme != "tcp":
+        return
+    host, colon, port_text = rest.rpartition(":")
+    host = host.strip("[]")
+    if not colon or not host or not port_text.isdigit() or not 0 < int(port_text) < 65536:
+        raise SchedulerError(f"{address!r} is not a scheduler address: expected "
+                             "tcp://HOST:PORT, e.g. tcp://10.0.0.5:8786")  # fmt: skip
+    try:
+        socket.create_connection((host, int(port_text)), timeout=timeout).close()
+    except ConnectionRefusedError:
+        raise SchedulerError(f"nothing listens at {host}:{port_text} (connection refused)") \
+            from None  # fmt: skip
+    except TimeoutError:
+        raise SchedulerError(f"no answer from {host}:{port_text} within {timeout:g} s") from None
+    except OSError as exc:
+        raise SchedulerError(f"cannot reach {host}:{port_text} "
+                             f"({exc.strerror or exc})") from None  # fmt: skip
+
+
+def join_scheduler(address: str, timeout: float = CONNECT_TIMEOUT) -> Any:
+    """A ``dask.distributed.Client`` joined to the scheduler at ``address``.
+
+    Parameters
+    ----------
+    address : str
+        ``tcp://HOST:PORT`` (or another scheme Dask knows).
+    timeout : float
+        Connect timeout (s), in (0, 3600].
+
+    Raises
+    ------
+    SchedulerError
+        Nothing listens there, no answer within ``timeout``, or the server is not a Dask
+        scheduler (it answers in another protocol, which Dask misreads as a frame size
+        of exabytes).
+    """
+    from distributed import Client
+
+    timeout = check_connect_timeout(timeout)
+    probe_scheduler(address, timeout)
+    try:
+        return Client(address, timeout=f"{timeout}s")
+    except (MemoryError, ValueError, TypeError, KeyError, EOFError) as exc:
+        raise SchedulerError(f"{address} is not a Dask scheduler (it answered in another "
+                             f"protocol: {type(exc).__name__})") from None  # fmt: skip
+    except OSError as exc:  # Dask's own connect timeout, or a closed connection
+        raise SchedulerError(f"no Dask scheduler answered at {address} within {timeout:g} s "
+                             f"({' '.join(str(exc).split())[:120]})") from None  # fmt: skip
+
+
 @contextmanager
-def open_client(scheduler: str | None, workers: int, timeout: str = "30s") -> Iterator[Any]:
-    """A ``dask.distributed.Client``, closed on exit: joined to ``scheduler``, or else on a
-    new :func:`local_client` of ``workers`` processes.
+def open_client(scheduler: str | None, workers: int,
+                timeout: float | str = CONNECT_TIMEOUT) -> Iterator[Any]:  # fmt: skip
+    """A ``dask.distributed.Client``, closed on exit: joined to ``scheduler``
+    (:func:`join_scheduler`), or else on a new :func:`local_client` of ``workers`` processes.
 
     Parameters
     ----------
@@ -148,16 +232,17 @@ def open_client(scheduler: str | None, workers: int, timeout: str = "30s") -> It
         Address of a Dask scheduler to join (``tcp://host:8786``).
     workers : int
         Worker processes of the local cluster (used without ``scheduler``).
-    timeout : str
-        How long to try to reach ``scheduler`` before ``OSError`` (Dask's duration text).
+    timeout : float or str
+        How long to try to reach ``scheduler`` (s; or Dask's duration text such as
+        ``"10s"``) before :class:`SchedulerError`.
     """
     if scheduler is None:
         with local_client(workers) as client:
             yield client
         return
-    from distributed import Client
-
-    client = Client(scheduler, timeout=timeout)
+    if isinstance(timeout, str):
+        timeout = float(timeout.strip().rstrip("s"))
+    client = join_scheduler(scheduler, timeout)
     try:
         yield client
     finally:
@@ -172,6 +257,7 @@ def run_tasks(
     scheduler: str | None = None,
     workers: int | None = None,
     warm_up: Callable[[], None] | None = None,
+    connect_timeout: float = CONNECT_TIMEOUT,
 ) -> list[tuple[Any, str]]:
     """Run ``task`` on every item and hand each result to ``on_result`` as it finishes.
 
@@ -192,6 +278,8 @@ def run_tasks(
         ``client`` nor ``scheduler``, the items run in this process without Dask.
     warm_up : callable, optional
         Called once in this process before any worker starts (compiles numba's cache).
+    connect_timeout : float
+        How long to try to reach ``scheduler`` (s).
 
     Returns
     -------
@@ -213,7 +301,7 @@ def run_tasks(
 
     with ExitStack() as stack:
         if client is None:
-            client = stack.enter_context(open_client(scheduler, n))
+            client = stack.enter_context(open_client(scheduler, n, connect_timeout))
         futures = client.map(task, list(items), pure=False)
         index = {f.key: item for f, item in zip(futures, items, strict=True)}
         lost: list[tuple[Any, str]] = []

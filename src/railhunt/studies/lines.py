@@ -18,6 +18,7 @@ from typing import Any
 
 import numpy as np
 
+from railhunt.analysis.frequency import frequency_kind
 from railhunt.studies.design import DESIGNS
 
 __all__ = [
@@ -85,7 +86,9 @@ class SweepLine:
     frequency_hz : numpy.ndarray
         Hunting frequency (Hz); NaN where not found or not computed.
     frequency_source : tuple of str
-        ``"eigenvalue"``, ``"limit-cycle"`` or ``"limit-exceeded"`` per point ("" if none).
+        ``"eigenvalue"``, ``"limit-cycle"`` or ``"limit-exceeded"`` per point ("" if none):
+        the kind of the file's source (:func:`railhunt.analysis.frequency.frequency_kind`;
+        both estimates of a limit cycle's frequency are ``"limit-cycle"``).
     status : tuple of str
         Each point's status (``"ok"``, ``"no-critical-speed"``, ``"failed"``).
     points : tuple of int
@@ -179,7 +182,8 @@ def _make_line(name: str, rows: list[dict[str, Any]], columns: frozenset[str]) -
         values=values[order],
         critical_speed_kmh=floats(SPEED_COLUMN),
         frequency_hz=floats(FREQUENCY_COLUMN),
-        frequency_source=tuple(str(row.get(SOURCE_COLUMN) or "") for row in rows),
+        frequency_source=tuple(frequency_kind(str(row.get(SOURCE_COLUMN) or ""))
+                               for row in rows),  # fmt: skip
         status=tuple(str(row.get("status") or "") for row in rows),
         points=tuple(int(row.get("point", k)) for k, row in enumerate(rows)),
         frequency_speed_kmh=speeds.pop() if len(speeds) == 1 else math.nan,

@@ -20,7 +20,11 @@ if TYPE_CHECKING:
     from railhunt.paper2019 import Expected
     from railhunt.vehicle import Vehicle
 
-__all__ = ["Context", "Headline", "Report", "Settings", "Step", "claim", "compare", "show"]
+__all__ = ["NOT_JUDGED", "Context", "Headline", "Report", "Settings", "Step", "claim", "compare",
+           "compare_within", "not_judged", "show"]  # fmt: skip
+
+#: The difference of a row whose verdict the run's resolution cannot give.
+NOT_JUDGED = "not judged at this resolution"
 
 
 @dataclass
@@ -44,7 +48,8 @@ class Headline:
     difference : str
         ``railhunt - paper`` with the relative difference, or whether a claim holds.
     agrees : bool or None
-        True when within the row's tolerance (or the claim holds), None when not computed.
+        True when within the row's tolerance (or the claim holds), None when not computed
+        or not judged at the run's resolution (:data:`NOT_JUDGED`).
     quote : str
         The paper's sentence the number is taken from.
     note : str
@@ -139,6 +144,8 @@ class Report:
         Total run time (s).
     workers : int
         Number of Dask workers used (0: none, everything in this process).
+    vehicle_fingerprint : str
+        Fingerprint of the vehicle's parameters (:func:`railhunt.provenance.vehicle_fingerprint`).
     """
 
     out_dir: Path
@@ -151,6 +158,7 @@ class Report:
     quick: bool
     seconds: float
     workers: int = 0
+    vehicle_fingerprint: str = ""
 
     @property
     def headline(self) -> list[Headline]:
@@ -173,6 +181,7 @@ class Report:
         return {
             "railhunt_version": self.version,
             "vehicle": self.vehicle,
+            "vehicle_fingerprint": self.vehicle_fingerprint,
             "date": self.date,
             "quick": self.quick,
             "seconds": round(self.seconds, 2),
@@ -213,6 +222,9 @@ class Settings:
         Cant of those curves (m).
     map_nonlinear : bool
         Also the nonlinear critical speed of each radius (not only the linear one).
+    coarse : bool
+        A coarse run (``--quick``): rows whose verdict could change with a finer
+        resolution say :data:`NOT_JUDGED` instead of a verdict.
     """
 
     fig6_duration: float = 20.0
@@ -225,6 +237,7 @@ class Settings:
     map_radii: tuple[float, ...] = (2000.0, 4000.0, 8000.0, math.inf)
     map_cant: float = 0.15
     map_nonlinear: bool = True
+    coarse: bool = False
 
     @classmethod
     def quick(cls) -> Settings:
@@ -232,7 +245,7 @@ class Settings:
         stability map without the nonlinear search)."""
         return cls(frequency_speeds_kmh=(300.0, 450.0, 10.0), jump_tol_kmh=2.5,
                    family_kn=(1.0, 3.0, math.inf), sweep_points_per_section=2,
-                   map_nonlinear=False)  # fmt: skip
+                   map_nonlinear=False, coarse=True)  # fmt: skip
 
 
 @dataclass
@@ -341,3 +354,41 @@ def claim(expected: Expected, value: float | str, holds: bool) -> Headline:
     return Headline(e.key, e.quantity, e.where, e.unit, e.paper, value,
                     "holds" if holds else "does not hold", holds, e.quote,
                     "" if holds else e.note)  # fmt: skip
+
+
+def not_judged(expected: Expected, value: float | str, why: str) -> Headline:
+    """A row whose verdict the run's resolution cannot give: railhunt's value is shown, the
+    difference says :data:`NOT_JUDGED` and ``why`` takes the note's place.
+
+    Parameters
+    ----------
+    expected : railhunt.paper2019.Expected
+        The paper's entry.
+    value : float or str
+        railhunt's value at this resolution (a number is rounded to 3 decimals).
+    why : str
+        What the resolution leaves open, e.g. "2 points per section: the total variation
+        can only grow with more points".
+    """
+    e = expected
+    if not isinstance(value, str):
+        value = round(float(value), 3)
+    return Headline(e.key, e.quantity, e.where, e.unit, e.paper, value, NOT_JUDGED, None,
+                    e.quote, why)  # fmt: skip
+
+
+def compare_within(expected: Expected, value: float, low: float, high: float,
+                   why: str) -> Headline:  # fmt: skip
+    """:func:`compare` for a value the run only knows within ``[low, high]`` (its resolution).
+
+    The row agrees (or differs) only when the whole interval lies inside (or outside) the
+    paper's tolerance; otherwise it is :func:`not_judged` with ``why``.
+    """
+    e = expected
+    paper = float(e.paper)
+    lo_ok, hi_ok = paper - e.rel_tol * abs(paper), paper + e.rel_tol * abs(paper)
+    if not (math.isfinite(low) and math.isfinite(high)):
+        return compare(e, value)
+    if (lo_ok <= low and high <= hi_ok) or high < lo_ok or low > hi_ok:
+        return compare(e, value)
+    return not_judged(e, round(float(value), e.digits + 2), why)

@@ -211,7 +211,8 @@ def build_html(report: Report) -> str:
         "<h2>Headline numbers</h2>",
         f"<p>{agree} agree with the paper (green: within the row's tolerance, 3 % for the "
         f"direct numbers, 5 % for the parameter studies, or the paper's statement holds), "
-        f"{differ} differ (red; the last column says why), {missing} not computed (grey).</p>",
+        f"{differ} differ (red; the last column says why), {missing} not computed or not "
+        "judged at this run's resolution (grey).</p>",
         headline_table(rows),
         *(_step_html(s) for s in report.steps),
         "<h2>Timings</h2>",

@@ -40,7 +40,8 @@ from railhunt.studies.reproduce_fig10_12 import fig10_12, sweep_headline
 from railhunt.studies.reproduce_fig13 import fig13
 from railhunt.vehicle import Vehicle
 
-__all__ = ["Headline", "Report", "Settings", "Step", "reproduce", "show", "sweep_headline"]
+__all__ = ["OUTPUT_FILES", "Headline", "Report", "Settings", "Step", "reproduce", "show",
+           "sweep_headline"]  # fmt: skip
 
 # Earlier names, kept importable from here: ``railhunt reproduce`` imports ``_show``, the
 # tests ``_Context``, ``_period`` and ``_fig13``.
@@ -50,6 +51,11 @@ _period = peak_period
 _fig13 = fig13
 
 # --------------------------------------------------------------------------- driver
+
+#: The files a run writes into its folder (the sweeps' ``.sweep.json`` sidecars aside).
+OUTPUT_FILES = ("report.html", "headline.json", "fig6.png", "fig7a.png", "fig7b.png",
+                "fig8.png", "fig10.png", "fig11.png", "fig12.png", "fig13.png", "sweep.csv",
+                "stability_map.png", "stability_map.csv")  # fmt: skip
 
 #: The steps, in report order.
 STEPS: tuple[Callable[[Context], Step], ...] = (fig6, fig7, fig8, fig10_12, fig13, curves)
@@ -93,6 +99,7 @@ def reproduce(
     Report
     """
     import railhunt
+    from railhunt.provenance import vehicle_fingerprint
     from railhunt.studies.report import write_html
 
     out = Path(out_dir)
@@ -125,7 +132,8 @@ def reproduce(
             workers = 0
     report = Report(out, out / "report.html", out / "headline.json", steps, vehicle.name,
                     railhunt.__version__, started, settings != Settings(),
-                    time.perf_counter() - t_start, workers)  # fmt: skip
+                    time.perf_counter() - t_start, workers,
+                    vehicle_fingerprint(vehicle))  # fmt: skip
     report.json.write_text(json.dumps(report.to_dict(), indent=2, ensure_ascii=False) + "\n",
                            encoding="utf-8")  # fmt: skip
     write_html(report, report.html)

@@ -13,7 +13,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
-from railhunt.studies.execute import progress_bar, run_tasks
+from railhunt.studies.execute import CONNECT_TIMEOUT, progress_bar, run_tasks
 from railhunt.studies.store import ResultStore, SweepResults
 
 
@@ -31,6 +31,7 @@ def run_study(
     workers: int | None = None,
     progress: bool | Callable[[int, int], None] = False,
     warm_up: Callable[[], None] | None = None,
+    connect_timeout: float = CONNECT_TIMEOUT,
 ) -> SweepResults:
     """Run ``task`` on every point a results file does not hold yet.
 
@@ -53,6 +54,8 @@ def run_study(
     warm_up : callable, optional
         Compiles the tasks' code in this process before workers start (only if there is
         work to do).
+    connect_timeout : float
+        How long to try to reach ``scheduler`` (s).
 
     Returns
     -------
@@ -84,7 +87,8 @@ def run_study(
     complete = False
     try:
         lost = run_tasks(task, todo, on_result, client=client, scheduler=scheduler,
-                         workers=workers, warm_up=warm_up if todo else None)  # fmt: skip
+                         workers=workers, connect_timeout=connect_timeout,
+                         warm_up=warm_up if todo else None)  # fmt: skip
         complete = len(rows) == total
     finally:
         if bar is not None:

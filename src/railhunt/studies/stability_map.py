@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 
 from railhunt.curve import Curve, fixed_deficiency
-from railhunt.studies.execute import check_workers
+from railhunt.studies.execute import CONNECT_TIMEOUT, check_connect_timeout, check_workers
 from railhunt.studies.runner import run_study
 from railhunt.studies.store import (
     STATUS_FAILED,
@@ -27,7 +27,7 @@ from railhunt.studies.store import (
     SweepResults,
     columns_for,
 )
-from railhunt.track import SingleDefect
+from railhunt.track import SampledTrack, SingleDefect, check_excitation
 from railhunt.vehicle import Vehicle
 
 #: The analyses a stability map can run at each radius.
@@ -130,6 +130,7 @@ def stability_map(
     scheduler: str | None = None,
     workers: int | None = None,
     progress: bool | Callable[[int, int], None] = False,
+    connect_timeout: float = CONNECT_TIMEOUT,
 ) -> SweepResults:
     """Linear and nonlinear critical speed of a vehicle in curves of several radii.
 
@@ -156,6 +157,8 @@ def stability_map(
     out, resume, overwrite, client, scheduler, workers, progress
         As for :func:`railhunt.sweep`: results file (CSV or Parquet) written as radii
         finish, resumable; Dask cluster or local workers; progress bar or callback.
+    connect_timeout : float
+        As for :func:`railhunt.sweep`: how long to try to reach ``scheduler`` (s).
 
     Returns
     -------
@@ -165,6 +168,7 @@ def stability_map(
         ``critical_speed_kmh``, ``status`` and ``message``.
     """
     radii = check_radii(radii)
+    check_excitation(excitation, (SingleDefect, SampledTrack))
     outputs = tuple(outputs)
     bad = [o for o in outputs if o not in MAP_OUTPUTS]
     if bad or not outputs:
@@ -176,6 +180,7 @@ def stability_map(
         fixed_deficiency(1000.0, cant_deficiency, direction)
     if client is None and scheduler is None:
         check_workers(workers)
+    check_connect_timeout(connect_timeout)
     if excitation is None:
         excitation = SingleDefect()
     param_cols = ["radius_m", "cant_m" if cant_deficiency is None else "cant_deficiency_m"]
@@ -188,7 +193,7 @@ def stability_map(
     return run_study([(i, (i, r)) for i, r in enumerate(radii)], task, meta,
                      label="stability map", out=out, resume=resume, overwrite=overwrite,
                      client=client, scheduler=scheduler, workers=workers, progress=progress,
-                     warm_up=_warm_up)  # fmt: skip
+                     warm_up=_warm_up, connect_timeout=connect_timeout)  # fmt: skip
 
 
 def _describe(vehicle: Vehicle, radii: list[float], cant: float,
@@ -198,12 +203,14 @@ def _describe(vehicle: Vehicle, radii: list[float], cant: float,
     """The study description (sidecar); its fingerprint decides whether a file resumes."""
     from railhunt import __version__
     from railhunt._cache import source_hash
+    from railhunt.provenance import provenance, vehicle_block
 
     meta: dict[str, Any] = {
         "railhunt": __version__,
         "source": source_hash(),
         "study": "stability-map",
-        "vehicle": {"parameters": vehicle.as_dict(), "contact": repr(vehicle.contact)},
+        "vehicle": vehicle_block(vehicle),
+        "provenance": provenance(vehicle),
         "radii": [r if math.isfinite(r) else "inf" for r in radii],
         "direction": direction,
         "outputs": list(outputs),

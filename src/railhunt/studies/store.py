@@ -70,6 +70,11 @@ def columns_for(parameters: Sequence[str], outputs: Sequence[str]) -> list[str]:
     return [*cols, "status", "message"]
 
 
+#: Keys of a study description that do not decide whether a file resumes: the fingerprint
+#: itself, and the provenance (the vehicle's name, which does not change the numbers).
+UNFINGERPRINTED = frozenset({"fingerprint", "provenance"})
+
+
 def column_unit(name: str) -> str:
     """Unit of a results column: a vehicle parameter's SI unit, or from its suffix."""
     if name in PARAMETERS:
@@ -384,7 +389,7 @@ class ResultStore:
         self.columns: list[str] = list(meta["columns"])
         self.meta = dict(meta)
         self.meta["fingerprint"] = fingerprint({k: v for k, v in meta.items()
-                                                if k != "fingerprint"})  # fmt: skip
+                                                if k not in UNFINGERPRINTED})  # fmt: skip
         self.parquet = is_parquet(self.path)
         if self.parquet:
             _require_pyarrow()
@@ -432,7 +437,7 @@ class ResultStore:
                                   f"{self.side.name} is missing or unreadable")  # fmt: skip
         if old.get("fingerprint") != self.meta["fingerprint"]:
             differ = sorted(k for k in set(old) | set(self.meta)
-                            if k != "fingerprint" and old.get(k) != self.meta.get(k))  # fmt: skip
+                            if k not in UNFINGERPRINTED and old.get(k) != self.meta.get(k))
             raise ResultFileError(f"cannot resume {self.path}: it was written by a different "
                                   f"study (differs in: {', '.join(differ) or 'version'}); "
                                   "use another file or --overwrite")  # fmt: skip

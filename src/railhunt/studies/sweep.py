@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 
 from railhunt.studies.design import Point, build_design, frequency_speed, parse_ties
-from railhunt.studies.execute import check_workers
+from railhunt.studies.execute import CONNECT_TIMEOUT, check_connect_timeout, check_workers
 from railhunt.studies.runner import run_study
 from railhunt.studies.store import (
     OUTPUTS,
@@ -28,7 +28,7 @@ from railhunt.studies.store import (
     SweepResults,
     columns_for,
 )
-from railhunt.track import SingleDefect
+from railhunt.track import SampledTrack, SingleDefect, check_excitation
 from railhunt.vehicle import Vehicle
 
 
@@ -180,6 +180,7 @@ def sweep(
     scheduler: str | None = None,
     workers: int | None = None,
     progress: bool | Callable[[int, int], None] = False,
+    connect_timeout: float = CONNECT_TIMEOUT,
 ) -> SweepResults:
     """Run a parameter study: critical speeds and hunting frequency at every point.
 
@@ -227,6 +228,10 @@ def sweep(
         Run on this Dask cluster.
     scheduler : str, optional
         Address of a Dask scheduler to join.
+    connect_timeout : float
+        How long to try to reach ``scheduler`` (s), in (0, 3600]; a refused port, a
+        server that is not a Dask scheduler or no answer in time raise
+        :class:`railhunt.studies.execute.SchedulerError` (an ``OSError``).
     workers : int, optional
         Worker processes of the local cluster (default: all cores; 1 runs in this process).
     progress : bool or callable
@@ -249,12 +254,14 @@ def sweep(
                          "be in (0, 1000] km/h")  # fmt: skip
     if client is None and scheduler is None:
         check_workers(workers)
+    check_connect_timeout(connect_timeout)
     if frequency_amplitude is not None and not (math.isfinite(frequency_amplitude)
                                                 and 0 < frequency_amplitude <= 0.02):  # fmt: skip
         raise ValueError(f"frequency_amplitude = {frequency_amplitude!r} m is invalid: must be "
                          "in (0, 0.02] m")  # fmt: skip
     if excitation is None:
         excitation = SingleDefect()
+    check_excitation(excitation, (SingleDefect, SampledTrack))
     tie_map = parse_ties(ties)
     points = build_design(vehicle, parameters, design, samples, seed, ties)
     for p in points:  # every combination must make a valid vehicle, before any work starts
@@ -270,7 +277,7 @@ def sweep(
     return run_study([(p.index, (p, speeds[p.index])) for p in points], task, meta,
                      label="sweep", out=out, resume=resume, overwrite=overwrite, client=client,
                      scheduler=scheduler, workers=workers, progress=progress,
-                     warm_up=warm_up)  # fmt: skip
+                     warm_up=warm_up, connect_timeout=connect_timeout)  # fmt: skip
 
 
 def _describe(vehicle: Vehicle, parameters: Mapping[str, object], outputs: tuple[str, ...],
@@ -287,13 +294,15 @@ def _describe(vehicle: Vehicle, parameters: Mapping[str, object], outputs: tuple
     """
     from railhunt import __version__
     from railhunt._cache import source_hash
+    from railhunt.provenance import provenance, vehicle_block
 
     names = list(parameters)
     param_cols = list(points[0].values)
     meta: dict[str, Any] = {
         "railhunt": __version__,
         "source": source_hash(),
-        "vehicle": {"parameters": vehicle.as_dict(), "contact": repr(vehicle.contact)},
+        "vehicle": vehicle_block(vehicle),
+        "provenance": provenance(vehicle),
         "design": design,
         "parameters": {n: _json_values(parameters[n]) for n in names},
         "ties": {f: [lf[0], lf[1]] for f, lf in tie_map.items()},

@@ -5,9 +5,11 @@ from __future__ import annotations
 import json
 import math
 from pathlib import Path
+from typing import Any
 
 import click
 
+from railhunt.cli.errors import user_input
 from railhunt.cli.options import (
     CURVE_RULES,
     build_curve,
@@ -19,9 +21,10 @@ from railhunt.cli.options import (
     file_option,
     initial_amplitude_option,
     kmh_option,
+    overwrite_option,
     vehicle_options,
 )
-from railhunt.cli.output import fmt, json_safe, spinner, stdout_console
+from railhunt.cli.output import announce, fmt, json_safe, spinner, stdout_console, traced
 from railhunt.cli.rules import Ordered, Requires, command
 from railhunt.paper2019 import NO_BLOWOFF  # the blow-off force standing for 'inf' (N)
 
@@ -78,12 +81,14 @@ def _parse_forces(ctx: click.Context, param: click.Parameter,
 @curve_options("Length of the transition curves of --curve-radius (m), recorded in the JSON; "
                "the limit cycles are those of the constant curve and do not depend on it "
                "[default: R/10, within 20-300 m].")
+@overwrite_option
 @vehicle_options
 def bifurcation_command(from_kmh: float, to_kmh: float, initial_mm: float, as_json: bool,
                         png_file: Path | None, fu_family: list[float] | None,
                         family_png: Path | None, wheelset: str, curve_radius: float | None,
                         cant_mm: float | None, transition: float | None, direction: str,
-                        vehicle_file: Path | None, sets: dict[str, float]) -> None:  # fmt: skip
+                        overwrite: bool, vehicle_file: Path | None,
+                        sets: dict[str, float]) -> None:  # fmt: skip
     """Limit cycles of the vehicle on ideal track versus speed.
 
     \b
@@ -102,12 +107,14 @@ def bifurcation_command(from_kmh: float, to_kmh: float, initial_mm: float, as_js
     over the whole period (a curve has no mirror symmetry); amplitudes are
     half the peak-to-peak swing of the leading wheelset.
     """
-    check_outputs(png=png_file, **{"family-png": family_png})
+    check_outputs(overwrite=overwrite, png=png_file, **{"family-png": family_png})
     vehicle = build_vehicle(vehicle_file, sets)
     curve = build_curve(curve_radius, cant_mm, transition, direction)
     in_curve = {} if curve is None else {"curve": curve}
     from railhunt import bifurcation_diagram
     from railhunt.analysis.continuation import bifurcation_family
+
+    _announce_diagrams(vehicle, from_kmh, to_kmh, 1 + len(fu_family or ()))
 
     with spinner("following limit cycles"):
         diagram = bifurcation_diagram(vehicle, (from_kmh, to_kmh), **in_curve)
@@ -134,7 +141,7 @@ def bifurcation_command(from_kmh: float, to_kmh: float, initial_mm: float, as_js
             data["curve"] = curve_json(curve)
         if family:
             data["fu_family"] = summary
-        click.echo(json.dumps(json_safe(data), indent=2))
+        click.echo(json.dumps(json_safe(traced(data, vehicle)), indent=2))
         return
     out = stdout_console()
     out.print(f"vehicle: {vehicle.name}")
@@ -145,8 +152,7 @@ def bifurcation_command(from_kmh: float, to_kmh: float, initial_mm: float, as_js
               f" at {fmt(diagram.hopf_frequency_hz, '.2f', 'Hz')}"
               f" (from the orbits: {fmt(diagram.hopf_speed_from_orbits_kmh, '.1f', 'km/h')})")
     out.print(f"bifurcation type: {diagram.hopf_type}")
-    out.print(f"nonlinear critical speed (lowest limit cycle): "
-              f"{fmt(diagram.fold_speed_kmh, '.1f', 'km/h')}")
+    out.print(f"nonlinear critical speed (lowest limit cycle): {_fold_text(diagram)}")
     for fold in diagram.folds:
         out.print(f"  fold at {fold.speed_kmh:.1f} km/h, amplitude {fold.amplitude * 1e3:.2f} mm")
     vp = diagram.point_p_kmh(initial_mm * 1e-3)
@@ -164,3 +170,28 @@ def bifurcation_command(from_kmh: float, to_kmh: float, initial_mm: float, as_js
     for f in (png_file, family_png):
         if f is not None:
             out.print(f"wrote {f}")
+
+
+def _fold_text(diagram: Any) -> str:
+    """The lowest limit cycle, or why there is none in the range."""
+    if math.isfinite(diagram.fold_speed_kmh):
+        return f"{diagram.fold_speed_kmh:.1f} km/h"
+    low = diagram.speed_range_kmh[0]
+    if diagram.fold_below_range:
+        return (f"below the range: a branch of limit cycles still goes on at --from {low:g} "
+                "km/h, so the lowest limit cycle lies below it; lower --from")
+    return "n/a (no limit cycle found in the range)"
+
+
+def _announce_diagrams(vehicle: Any, from_kmh: float, to_kmh: float, count: int) -> None:
+    """Refuse a stiff damper's step, and announce diagrams of more than a minute."""
+    from railhunt import Model
+    from railhunt.simulation import auto_step
+    from railhunt.units import kmh_to_ms
+    from railhunt.workload import SIMULATED_SECONDS, workload
+
+    with user_input("--set/--vehicle: "):
+        step = auto_step(Model(vehicle), kmh_to_ms(to_kmh))
+    per = (to_kmh - from_kmh) * SIMULATED_SECONDS["bifurcation km/h"]
+    what = f"{count} diagram{'s' if count > 1 else ''} over {to_kmh - from_kmh:g} km/h"
+    announce(workload(count * per, step, what))

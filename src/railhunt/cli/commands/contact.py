@@ -9,8 +9,8 @@ from pathlib import Path
 import click
 
 from railhunt.cli.errors import CliError, user_input
-from railhunt.cli.options import check_outputs, number_range
-from railhunt.cli.output import json_safe
+from railhunt.cli.options import check_outputs, number_range, overwrite_option, write_sidecar
+from railhunt.cli.output import announce, command_record, json_safe, traced
 from railhunt.cli.rules import Ordered, command
 
 _INCLINATIONS = {"1:40": 1.0 / 40.0, "1:20": 1.0 / 20.0, "none": 0.0, "0": 0.0}
@@ -75,10 +75,11 @@ RULES = (
 @click.option("--csv", "csv_file", type=click.Path(dir_okay=False, path_type=Path),
               help="Write the table (mm, rad, mrad).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (SI units).")
+@overwrite_option
 def contact_command(
     wheel: str, rail: str, inclination: float, gauge: float, back_to_back: float,
     r0: float, y_max: float, y_step: float, amplitude: float, png_file: Path | None,
-    csv_file: Path | None, as_json: bool,
+    csv_file: Path | None, as_json: bool, overwrite: bool,
 ) -> None:
     """Contact geometry of a wheelset on its rails, and its equivalent conicity.
 
@@ -103,11 +104,15 @@ def contact_command(
     )
     from railhunt.contact.conicity import ConicityError
 
-    check_outputs(png=png_file, csv=csv_file)
+    check_outputs(overwrite=overwrite, png=png_file, csv=csv_file)
     with user_input("--wheel: "):
         w = s1002(step=1e-5) if wheel.upper() == "S1002" else read_profile(wheel, "wheel")
     with user_input("--rail: "):
         r = uic60(0.0, step=1e-5) if rail.upper() == "UIC60" else read_profile(rail, "rail")
+    from railhunt.workload import contact_workload
+
+    positions = 2 * int(round(y_max / y_step)) + 1
+    announce(contact_workload(positions, f"±{y_max:g} mm in steps of {y_step:g} mm"))
     with user_input():
         geo = contact_geometry(
             w, r, rail_inclination=inclination, gauge=gauge * 1e-3,
@@ -133,6 +138,8 @@ def contact_command(
             np.savetxt(csv_file, table, delimiter=",", fmt="%.9g", comments="",
                        header="y_mm,r_left_mm,r_right_mm,delta_r_mm,delta_left_rad,"
                               "delta_right_rad,roll_mrad,wheel_left_mm,wheel_right_mm,jump")
+            write_sidecar(csv_file, traced({"wheel": w.name, "rail": r.name}),
+                          **command_record())  # fmt: skip
     if png_file is not None:
         from railhunt.plots import plot_contact_geometry
 
@@ -148,7 +155,7 @@ def contact_command(
             "r_right_m": geo.r_right.tolist(), "delta_left_rad": geo.delta_left.tolist(),
             "delta_right_rad": geo.delta_right.tolist(), "roll_rad": geo.roll.tolist(),
         }
-        click.echo(json.dumps(json_safe(data)))
+        click.echo(json.dumps(json_safe(traced(data))))
         return
     i0 = int(abs(geo.y).argmin())
     click.echo(f"{w.name} on {r.name}, inclination {inclination:.4g}, gauge {gauge:g} mm, "

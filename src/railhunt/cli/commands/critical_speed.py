@@ -30,10 +30,12 @@ from railhunt.cli.options import (
     vehicle_options,
 )
 from railhunt.cli.output import (
+    announce,
     fmt,
     json_safe,
     linear_critical_speed_line,
     stdout_console,
+    traced,
     trial_progress,
 )
 from railhunt.cli.rules import Excludes, Ordered, Requires, command
@@ -162,6 +164,7 @@ def critical_speed_command(
 
     excitation = single_defect(amplitude, wavelength)
     curve = build_curve(curve_radius, cant_mm, transition, direction)
+    _announce_search(vehicle, excitation, start_kmh, step_kmh, tol_kmh, dt)
 
     with trial_progress("critical speed") as on_trial, user_input():
         result = critical_speed(
@@ -203,7 +206,7 @@ def critical_speed_command(
     ):
         table.add_column(head, justify="left" if head in ("verdict", "note") else "right")
     for i, trial in enumerate(result.trials, 1):
-        note = trial.status if trial.status != "ok" else ("" if trial.decided else "undecided")
+        note = _trial_note(trial)
         table.add_row(
             str(i),
             f"{trial.speed_kmh:g}",
@@ -216,8 +219,63 @@ def critical_speed_command(
         )
     console = stdout_console()
     console.print(table)
+    if any(_trial_note(t) == STEADY for t in result.trials):
+        console.print(f"{STEADY}: hunting on a limit cycle, the envelope stationary within "
+                      "±0.01 1/s over 3 s (a small negative growth is still a cycle); "
+                      "undecided: the verdict is the envelope's trend after 60 s")  # fmt: skip
     console.print(_nonlinear_line(result, tol_kmh))
     console.print(linear_critical_speed_line(linear, curved=curve is not None))
+    if _above_linear(result, linear):
+        console.print(f"[yellow]note: the nonlinear critical speed lies above the linear one "
+                      f"({linear.speed_kmh:.1f} km/h), where centred running is unstable: a "
+                      "trial above it can only be stable on a branch of limit cycles, so "
+                      "check it with a larger --amplitude or 'railhunt bifurcation'[/yellow]")
+
+
+#: The note of a trial judged hunting on a stationary envelope.
+STEADY = "steady cycle"
+
+
+def _trial_note(trial: Any) -> str:
+    """The note column: the solver's status if not ok, else how the verdict was taken."""
+    if trial.status != "ok":
+        return trial.status
+    if not trial.decided:
+        return "undecided"
+    return STEADY if trial.verdict == "hunting" else ""
+
+
+def _above_linear(result: Any, linear: Any) -> bool:
+    """Whether a found nonlinear critical speed lies above the linear one."""
+    import math
+
+    return bool(result.bracketed and math.isfinite(linear.speed_kmh)
+                and result.speed_kmh > linear.speed_kmh)  # fmt: skip
+
+
+def _announce_search(vehicle: Any, excitation: Any, start_kmh: float, step_kmh: float,
+                     tol_kmh: float, dt: float | None) -> None:  # fmt: skip
+    """Refuse a stiff damper's step, and announce a search of more than a minute."""
+    import math
+
+    from railhunt import Model
+    from railhunt.analysis.critical import Judgement
+    from railhunt.simulation import auto_step, excitation_end_time
+    from railhunt.units import kmh_to_ms
+    from railhunt.workload import SIMULATED_SECONDS, workload
+
+    model = Model(vehicle)
+    with user_input("--set/--vehicle: "):
+        step = dt if dt is not None else auto_step(model, kmh_to_ms(start_kmh))
+    bisect = math.ceil(math.log2(max(step_kmh / tol_kmh, 1.0)))
+    trials = 3 + bisect
+    t_exc = excitation_end_time(model, excitation, kmh_to_ms(start_kmh))
+    per_trial = t_exc + SIMULATED_SECONDS["critical-speed trial"]
+    # At most: bracketing all the way to 20 or 800 km/h, every trial to its longest run.
+    most = (max(start_kmh - 20.0, 800.0 - start_kmh) / step_kmh + 1 + bisect) * (
+        t_exc + Judgement().max_duration)
+    announce(workload(trials * per_trial, step, f"~{trials} trials of ~{per_trial:.0f} s "
+                      "simulated", most_simulated=most))  # fmt: skip
 
 
 def _nonlinear_line(result: Any, tol_kmh: float) -> str:
@@ -246,6 +304,7 @@ def _critical_json(
         "bracketed": bool(result.bracketed),
         "first_hunting_speed_kmh": result.first_hunting_kmh,
         "tol_kmh": tol_kmh,
+        "above_linear_critical_speed": _above_linear(result, linear),
         "vehicle": vehicle.name,
         "excitation": {
             "amplitude_mm": excitation.amplitude * 1e3,
@@ -264,4 +323,4 @@ def _critical_json(
             for t in result.trials
         ],
     }
-    return json_safe(data)
+    return json_safe(traced(data, vehicle))

@@ -20,11 +20,12 @@ from railhunt.cli.options import (
     direction_option,
     file_option,
     number_range,
+    overwrite_option,
     radius_option,
     transition_option,
     vehicle_options,
 )
-from railhunt.cli.output import fmt, json_safe, spinner, stdout_console
+from railhunt.cli.output import announce, fmt, json_safe, spinner, stdout_console, traced
 from railhunt.cli.rules import command
 
 #: Track (m) the curve-entry run of ``--png`` covers past the end of the entry transition,
@@ -47,9 +48,10 @@ ENTRY_SETTLE = 100.0
 @file_option("--png", "png_file", "Draw the curve entry: a run through the entry transition "
              "into the constant curve (wheelset displacements, yaw damper forces against the "
              "blow-off force F_u, Y/Q of the leading wheelset).")  # fmt: skip
+@overwrite_option
 @vehicle_options
 def curve_command(radius: float, cant_mm: float | None, speed: float, transition: float | None,
-                  direction: str, as_json: bool, png_file: Path | None,
+                  direction: str, as_json: bool, png_file: Path | None, overwrite: bool,
                   vehicle_file: Path | str | None, sets: dict[str, float]) -> None:  # fmt: skip
     """Steady curving of the vehicle in the constant part of a curve, and its stability.
 
@@ -69,7 +71,7 @@ def curve_command(radius: float, cant_mm: float | None, speed: float, transition
     wheel (a wheel pressing its flange against its rail has Y > 0); an angle
     of attack is + when the wheelset's front points toward the outer rail.
     """
-    check_outputs(png=png_file)
+    check_outputs(overwrite=overwrite, png=png_file)
     vehicle = build_vehicle(vehicle_file, sets)
     curve = build_curve(radius, cant_mm, transition, direction, start=CURVE_LEAD_IN)
 
@@ -90,7 +92,7 @@ def curve_command(radius: float, cant_mm: float | None, speed: float, transition
                     balance_speed_kmh=_balance_kmh(curve, vehicle))  # fmt: skip
         if entry is not None:
             data["curve_entry"] = entry
-        click.echo(json.dumps(json_safe(data), indent=1))
+        click.echo(json.dumps(json_safe(traced(data, vehicle)), indent=1))
         return
     _print_state(state, vehicle, curve)
     if entry is not None:
@@ -117,6 +119,13 @@ def _curve_entry(vehicle: Any, speed: float, curve: Any, png_file: Path) -> dict
 
     length = curve.start + curve.transition + 2 * (vehicle.l + vehicle.l1) + ENTRY_SETTLE
     duration = length / kmh_to_ms(speed)
+    from railhunt import Model
+    from railhunt.simulation import auto_step
+    from railhunt.workload import workload
+
+    with user_input("--set/--vehicle: "):
+        step = auto_step(Model(vehicle), kmh_to_ms(speed))
+    announce(workload(duration, step, f"the curve entry, {duration:.1f} s simulated"))
     with spinner(f"simulating the curve entry ({duration:.1f} s) ..."), user_input():
         run = simulate(vehicle, speed, duration=duration, curve=curve)
     with spinner("plotting ..."), user_input("cannot write --png: "):

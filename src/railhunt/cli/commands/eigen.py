@@ -12,10 +12,12 @@ from railhunt.cli.options import (
     check_outputs,
     file_option,
     kmh_option,
+    overwrite_option,
     speed_count,
     vehicle_options,
+    write_sidecar,
 )
-from railhunt.cli.output import linear_critical_speed_line, spinner, stdout_console
+from railhunt.cli.output import command_record, linear_critical_speed_line, spinner, stdout_console
 from railhunt.cli.rules import command
 
 
@@ -27,6 +29,7 @@ from railhunt.cli.rules import command
 @file_option("--png", "png_file", "Plot the root locus (eigenvalues coloured by speed, hunting "
              "mode highlighted) and the hunting damping ratio vs speed.")  # fmt: skip
 @file_option("--csv", "csv_file", "Write the hunting-mode table (one row per speed).")
+@overwrite_option
 @vehicle_options
 def eigen_command(
     from_kmh: float,
@@ -34,6 +37,7 @@ def eigen_command(
     step_kmh: float,
     png_file: Path | None,
     csv_file: Path | None,
+    overwrite: bool,
     vehicle_file: Path | None,
     sets: dict[str, float],
 ) -> None:
@@ -48,7 +52,7 @@ def eigen_command(
     tiny disturbance grows. Prints a table of hunting frequency (Hz) and
     damping ratio (%) vs speed (km/h) and the linear critical speed.
     """
-    check_outputs(csv=csv_file, png=png_file)
+    check_outputs(overwrite=overwrite, csv=csv_file, png=png_file)
     n = speed_count(from_kmh, to_kmh, step_kmh, 5000)
     vehicle = build_vehicle(vehicle_file, sets)
 
@@ -91,6 +95,10 @@ def eigen_command(
         )
         with user_input("cannot write --csv: "):
             np.savetxt(csv_file, data, delimiter=",", header=header, comments="", fmt="%.9g")
+            from railhunt.provenance import provenance
+
+            write_sidecar(csv_file, provenance(vehicle), **command_record(),
+                          columns=header.split(","))  # fmt: skip
         click.echo(f"csv: {csv_file}")
     if png_file is not None:
         from railhunt.plots import plot_root_locus

@@ -7,16 +7,18 @@ from pathlib import Path
 
 import click
 
+from railhunt.cli.errors import user_input
 from railhunt.cli.options import (
     build_vehicle,
     check_outputs,
     file_option,
     initial_amplitude_option,
     kmh_option,
+    overwrite_option,
     speed_count,
     vehicle_options,
 )
-from railhunt.cli.output import fmt, json_safe, spinner, stdout_console
+from railhunt.cli.output import announce, fmt, json_safe, spinner, stdout_console, traced
 from railhunt.cli.rules import command
 
 
@@ -31,10 +33,12 @@ from railhunt.cli.rules import command
 @file_option("--damper-png", "damper_png", "Draw, like the paper's Fig. 8, the leading "
              "wheelset's displacement and a yaw damper's velocity against the blow-off velocity "
              "at the first speed with a limit cycle.")
+@overwrite_option
 @vehicle_options
 def frequency_command(from_kmh: float, to_kmh: float, step_kmh: float, initial_mm: float,
                       as_json: bool, png_file: Path | None, damper_png: Path | None,
-                      vehicle_file: Path | None, sets: dict[str, float]) -> None:  # fmt: skip
+                      overwrite: bool, vehicle_file: Path | None,
+                      sets: dict[str, float]) -> None:  # fmt: skip
     """Hunting frequency of the leading wheelset versus speed (Hz).
 
     \b
@@ -44,22 +48,28 @@ def frequency_command(from_kmh: float, to_kmh: float, step_kmh: float, initial_m
     cycle (FFT of the displacement after the transient, refined by shooting the
     periodic orbit). The switch between the two is the paper's frequency jump.
     """
-    check_outputs(png=png_file, **{"damper-png": damper_png})
+    check_outputs(overwrite=overwrite, png=png_file, **{"damper-png": damper_png})
     n = speed_count(from_kmh, to_kmh, step_kmh, 500)
     vehicle = build_vehicle(vehicle_file, sets)
     import numpy as np
 
     from railhunt import Model, hunting_frequency
-    from railhunt.analysis.frequency import frequency_jump
+    from railhunt.analysis.frequency import frequency_jump, frequency_kind
+    from railhunt.simulation import auto_step
+    from railhunt.units import kmh_to_ms
+    from railhunt.workload import SIMULATED_SECONDS, workload
 
     model = Model(vehicle)
+    with user_input("--set/--vehicle: "):
+        dt = auto_step(model, kmh_to_ms(to_kmh))
+    announce(workload(n * SIMULATED_SECONDS["frequency speed"], dt, f"{n} speeds"))
     speeds = from_kmh + step_kmh * np.arange(n)
     results = []
     with spinner("simulating speeds"):
         for s in speeds:
             results.append(hunting_frequency(vehicle, float(s), initial_mm * 1e-3, model=model))
     freqs = np.array([r.frequency_hz for r in results])
-    sources = [r.source for r in results]
+    sources = [frequency_kind(r.source) for r in results]
     jump = frequency_jump(speeds, freqs, sources)
     if png_file is not None:
         from railhunt.plots import plot_hunting_frequency
@@ -68,7 +78,8 @@ def frequency_command(from_kmh: float, to_kmh: float, step_kmh: float, initial_m
     if damper_png is not None:
         from railhunt.plots import plot_damper_velocity
 
-        pick = next((r for r in results if r.source == "limit-cycle"), results[-1])
+        pick = next((r for r in results if frequency_kind(r.source) == "limit-cycle"),
+                    results[-1])  # fmt: skip
         plot_damper_velocity(pick.t, pick.y, pick.damper_velocity, pick.blowoff_velocity,
                              damper_png, f"{pick.speed_kmh:g} km/h, {pick.verdict}")  # fmt: skip
     if as_json:
@@ -79,7 +90,7 @@ def frequency_command(from_kmh: float, to_kmh: float, step_kmh: float, initial_m
                                                "to_hz": jump[2]},
             "points": [r.to_dict() for r in results],
         }  # fmt: skip
-        click.echo(json.dumps(json_safe(data), indent=2))
+        click.echo(json.dumps(json_safe(traced(data, vehicle)), indent=2))
         return
     from rich.table import Table
 

@@ -7,7 +7,7 @@ from pathlib import Path
 import click
 
 from railhunt.cli.errors import CliError
-from railhunt.cli.options import check_outputs, load_results, results_argument
+from railhunt.cli.options import check_outputs, load_results, overwrite_option, results_argument
 from railhunt.cli.output import stdout_console
 from railhunt.cli.rules import command
 
@@ -19,7 +19,9 @@ from railhunt.cli.rules import command
 @click.option("--parameter", "parameters", multiple=True, metavar="NAME",
               help="Draw only this line (repeatable, in this order). Default: every line "
               "of RESULTS.")  # fmt: skip
-def plot_command(results: Path, out_file: Path, parameters: tuple[str, ...]) -> None:
+@overwrite_option
+def plot_command(results: Path, out_file: Path, parameters: tuple[str, ...],
+                 overwrite: bool) -> None:  # fmt: skip
     """Critical speed and hunting frequency against each swept parameter (Figs. 10, 11).
 
     \b
@@ -31,7 +33,7 @@ def plot_command(results: Path, out_file: Path, parameters: tuple[str, ...]) -> 
     (the frequency jump at blow-off of the yaw damper). Grid and random designs
     vary several parameters at once and cannot be drawn this way.
     """
-    check_outputs(out=out_file)
+    check_outputs(overwrite=overwrite, out=out_file)
     from railhunt.plots import plot_sweep
     from railhunt.studies.sections import sweep_lines
 

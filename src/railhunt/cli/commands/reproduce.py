@@ -10,31 +10,32 @@ from typing import Any
 import click
 
 from railhunt.cli.errors import CliError
+from railhunt.cli.options import check_output_folder, overwrite_option
 from railhunt.cli.output import show_progress, spinner, stdout_console
 from railhunt.cli.rules import Excludes, command
+from railhunt.cli.study import CONNECT_RULE, connect_timeout_option, scheduler_client
 
-RULES = (Excludes("--scheduler", "--workers", "give either {a} or {b}, not both"),)
+RULES = (Excludes("--scheduler", "--workers", "give either {a} or {b}, not both"),
+         CONNECT_RULE)
 
 
 @contextlib.contextmanager
-def _dask_client(scheduler: str | None, workers: int | None) -> Iterator[Any]:
+def _dask_client(scheduler: str | None, workers: int | None,
+                 connect_timeout: float) -> Iterator[Any]:  # fmt: skip
     """A Dask client: joined to ``scheduler``, or a new local cluster of ``workers`` processes.
 
     Yields None (everything runs in this process) for ``--workers 1``.
     """
-    if scheduler is None and workers == 1:
+    if scheduler is not None:
+        with scheduler_client(scheduler, connect_timeout) as client:
+            yield client
+        return
+    if workers == 1:
         yield None
         return
-    from railhunt.studies.execute import check_workers, open_client
+    from railhunt.studies.execute import check_workers, local_client
 
-    with contextlib.ExitStack() as stack:
-        try:
-            client = stack.enter_context(open_client(scheduler, check_workers(workers),
-                                                     timeout="10s"))  # fmt: skip
-        except OSError as exc:
-            if scheduler is None:  # a local cluster that fails to start: not an input error
-                raise
-            raise CliError(f"--scheduler {scheduler}: cannot connect ({exc})") from None
+    with local_client(check_workers(workers)) as client:
         yield client
 
 
@@ -62,6 +63,23 @@ def _step_progress() -> Iterator[Callable[[str, str], None] | None]:
         yield update
 
 
+def _announce(quick: bool, client: Any) -> None:
+    """Announce a reproduction of more than a minute (measured times, shared by the
+    client's workers)."""
+    from railhunt.cli.output import announce
+    from railhunt.workload import SIMULATED_SECONDS, workload
+
+    n = 1
+    if client is not None:
+        try:
+            n = max(1, len(client.scheduler_info().get("workers", {})))
+        except Exception:  # noqa: BLE001 - only for the estimate
+            n = 1
+    key = "reproduce quick" if quick else "reproduce"
+    announce(workload(SIMULATED_SECONDS[key], 1e-3, "the paper's figures, measured",
+                      workers=n))  # fmt: skip
+
+
 def _with_unit(value: object, text: str, unit: str) -> str:
     """A table cell: ``text`` showing ``value``, a number (or a bound such as '< 50') with
     its unit, other text as it is."""
@@ -80,7 +98,7 @@ def _difference_style(agrees: bool | None) -> str:
 @click.option("--out", "out_dir", required=True, metavar="DIR",
               type=click.Path(file_okay=False, path_type=Path),
               help="Folder for report.html, headline.json and the figures (created if "
-              "missing; files of an earlier run are overwritten).")  # fmt: skip
+              "missing; files of an earlier run are replaced only with --overwrite).")
 @click.option("--quick", is_flag=True,
               help="Coarser and faster (under a minute): fewer speeds, a smaller F_u family, "
               "fewer sweep points, the stability map without the nonlinear search.")  # fmt: skip
@@ -90,8 +108,11 @@ def _difference_style(agrees: bool | None) -> str:
 @click.option("--workers", type=click.IntRange(min=1, max=256), metavar="N",
               help="Worker processes of the local Dask cluster (default: one per core; 1: "
               "no cluster, everything in this process).")  # fmt: skip
+@connect_timeout_option(default=10.0)
+@overwrite_option
 def reproduce_command(out_dir: Path, quick: bool, scheduler: str | None,
-                      workers: int | None) -> None:  # fmt: skip
+                      workers: int | None, connect_timeout: float,
+                      overwrite: bool) -> None:  # fmt: skip
     """Recompute the paper's Figs. 6, 7, 8, 10-13 for its vehicle and compare its numbers.
 
     \b
@@ -108,8 +129,9 @@ def reproduce_command(out_dir: Path, quick: bool, scheduler: str | None,
     2000, 4000 and 8000 m with 150 mm cant and on straight track
     (DIR/stability_map.png and .csv); --quick leaves out the nonlinear one.
     """
-    if out_dir.exists() and not out_dir.is_dir():
-        raise CliError(f"--out {out_dir}: exists and is not a folder")
+    from railhunt.studies.reproduce import OUTPUT_FILES
+
+    check_output_folder("--out", out_dir, OUTPUT_FILES, overwrite)
     try:
         out_dir.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
@@ -126,7 +148,8 @@ def reproduce_command(out_dir: Path, quick: bool, scheduler: str | None,
         warm_up()
     stack = contextlib.ExitStack()
     with spinner("starting Dask workers"):
-        client = stack.enter_context(_dask_client(scheduler, workers))
+        client = stack.enter_context(_dask_client(scheduler, workers, connect_timeout))
+    _announce(quick, client)
     with stack, _step_progress() as progress:
         report = reproduce(out_dir, quick=quick, client=client, progress=progress,
                            vehicle=vehicle)  # fmt: skip

@@ -10,9 +10,16 @@ from typing import Any
 
 import click
 
-from railhunt.cli.errors import CliError
-from railhunt.cli.options import check_outputs, file_option, load_results, results_argument
-from railhunt.cli.output import fmt, json_safe, stdout_console
+from railhunt.cli.errors import CliError, user_input
+from railhunt.cli.options import (
+    check_outputs,
+    file_option,
+    load_results,
+    overwrite_option,
+    results_argument,
+    write_sidecar,
+)
+from railhunt.cli.output import command_record, fmt, json_safe, stdout_console, traced
 from railhunt.cli.rules import command
 
 
@@ -27,8 +34,9 @@ def _share(value: float) -> str:
 @file_option("--csv", "csv_file", "Write one row per parameter and section (SI and display "
              "units, km/h, Hz, shares).")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON on stdout.")
+@overwrite_option
 def sections_command(results: Path, png_file: Path | None, csv_file: Path | None,
-                     as_json: bool) -> None:  # fmt: skip
+                     as_json: bool, overwrite: bool) -> None:  # fmt: skip
     """Change of critical speed and frequency per Table 1 section (Fig. 12).
 
     \b
@@ -48,7 +56,7 @@ def sections_command(results: Path, png_file: Path | None, csv_file: Path | None
     Points without a number are skipped and reported. Prints a table with each
     section's share of the parameter's total; --png draws Fig. 12.
     """
-    check_outputs(png=png_file, csv=csv_file)
+    check_outputs(overwrite=overwrite, png=png_file, csv=csv_file)
     from railhunt import section_changes
 
     table = load_results(results, section_changes)
@@ -59,12 +67,16 @@ def sections_command(results: Path, png_file: Path | None, csv_file: Path | None
             plot_sections(table, png_file)
         except OSError as exc:
             raise CliError(f"cannot write --png {png_file}: {exc.strerror or exc}") from None
+    source = results_provenance(results)
     if csv_file is not None:
         _write_sections_csv(table, csv_file)
+        with user_input("cannot write --csv: "):
+            write_sidecar(csv_file, traced({"source": source}), **command_record())
     if as_json:
         data = table.to_dict()
         data["results"] = str(results)
-        click.echo(json.dumps(json_safe(data), indent=2))
+        data["source"] = source
+        click.echo(json.dumps(json_safe(traced(data)), indent=2))
         return
     from rich.table import Table
 
@@ -101,6 +113,21 @@ def sections_command(results: Path, png_file: Path | None, csv_file: Path | None
     for f in (png_file, csv_file):
         if f is not None:
             out.print(f"wrote {f}")
+
+
+def results_provenance(results: Path) -> dict[str, Any]:
+    """The provenance of a study's results file, from its sidecar ``<file>.sweep.json``
+    (the railhunt version that computed it, the vehicle's name and fingerprint; files
+    written before the sidecar held them give what it has)."""
+    from railhunt.studies.store import sidecar_path
+
+    try:
+        meta = json.loads(sidecar_path(results).read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return {}
+    if isinstance(meta.get("provenance"), dict):
+        return meta["provenance"]
+    return {"railhunt_version": meta.get("railhunt")} if "railhunt" in meta else {}
 
 
 def _write_sections_csv(table: Any, path: Path) -> None:

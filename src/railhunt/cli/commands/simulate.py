@@ -7,7 +7,7 @@ from typing import Any
 
 import click
 
-from railhunt.cli.errors import user_input
+from railhunt.cli.errors import CliError, user_input
 from railhunt.cli.options import (
     CURVE_LEAD_IN,
     CURVE_RULES,
@@ -20,11 +20,13 @@ from railhunt.cli.options import (
     measured_track,
     method_options,
     number_range,
+    overwrite_option,
     random_track_options,
     single_defect,
     vehicle_options,
+    write_sidecar,
 )
-from railhunt.cli.output import spinner
+from railhunt.cli.output import announce, command_record, spinner
 from railhunt.cli.rules import Excludes, Ordered, Requires, command
 
 RULES = (
@@ -83,16 +85,20 @@ RULES = (
 @method_options
 @click.option(
     "--output-dt",
+    "--output-step",
+    "output_dt",
     type=float,
     default=None,
     metavar="S",
     callback=number_range("s", optional=True),
-    help="Keep one output sample per this interval (s). Default: every step.",
+    help="Keep one output sample per this interval (s); --output-step is the same option. "
+    "Default: every step.",
 )
 @file_option("--csv", "csv_file", "Write all channels (SI units, header with units).")
 @file_option("--png", "png_file", "Plot the leading wheelset: lateral displacement (mm) vs "
              "time and its phase plane after 3 s (with --curve-radius: the curve entry, "
              "wheelsets, yaw damper forces and Y/Q against distance).")  # fmt: skip
+@overwrite_option
 @vehicle_options
 def simulate_command(
     speed: float,
@@ -112,6 +118,7 @@ def simulate_command(
     output_dt: float | None,
     csv_file: Path | None,
     png_file: Path | None,
+    overwrite: bool,
     vehicle_file: Path | None,
     sets: dict[str, float],
 ) -> None:
@@ -138,10 +145,13 @@ def simulate_command(
     the single defect (or 20 m ahead with the other excitations), and
     displacements are measured from the track at each body's position.
 
-    Prints the run's status and the leading wheelset's peak and final
-    lateral amplitude (mm); --csv and --png save the details.
+    Prints the solver's status (how the integration ended), the verdict on
+    the run (decays or hunting, with the leading wheelset's amplitude in mm,
+    judged after the excitation as the critical-speed search judges a trial)
+    and the peak and final lateral amplitude (mm); --csv and --png save the
+    details (the CSV's metadata in FILE.meta.json).
     """
-    check_outputs(csv=csv_file, png=png_file)
+    check_outputs(overwrite=overwrite, csv=csv_file, png=png_file)
     tracks = (("--spectrum", spectrum), ("--irregularity", irregularity_file))
     irregular = [flag for flag, value in tracks if value]
     vehicle = build_vehicle(vehicle_file, sets)
@@ -173,6 +183,7 @@ def simulate_command(
     lead_in = CURVE_LEAD_IN + (excitation.start + excitation.wavelength
                                if initial_displacement is None and not irregular else 0.0)
     curve = build_curve(curve_radius, cant_mm, transition, direction, start=lead_in)
+    _check_work(vehicle, speed, duration, method, dt, output_dt)
     with spinner(f"simulating {duration:g} s at {speed:g} km/h ..."), user_input():
         result = simulate(
             vehicle,
@@ -194,7 +205,12 @@ def simulate_command(
     click.echo(f"vehicle:    {vehicle.name}")
     click.echo(f"speed:      {speed:g} km/h, {method}, {t[-1]:g} s simulated")
     click.echo(f"excitation: {described}")
-    click.echo(f"status:     {result.status} ({result.message})")
+    from railhunt.analysis.critical import judge_run
+
+    verdict = judge_run(result, two_sided=curve is not None)
+    click.echo(f"status:     solver {result.status} ({result.message})")
+    if not irregular:
+        click.echo(f"verdict:    {verdict.text}")
     click.echo(f"y_w1:       peak {y.max():.3f} mm, final amplitude {final:.3f} mm ({note})")
     if curve is not None:
         from railhunt.cli.commands.curve import print_run_in_curve
@@ -205,16 +221,50 @@ def simulate_command(
     if csv_file is not None:
         with user_input("cannot write --csv: "):
             result.to_csv(csv_file)
+            write_sidecar(csv_file, _provenance(vehicle), **command_record(),
+                          columns=result.table()[0], status=result.status,
+                          verdict=None if irregular else verdict.verdict)  # fmt: skip
         click.echo(f"csv:        {csv_file} ({t.size} rows, {len(result.channel_names)} channels)")
     if png_file is not None:
         from railhunt.plots import plot_curve_entry, plot_time_history
 
         with spinner("plotting ..."), user_input("cannot write --png: "):
             if curve is None:
-                plot_time_history(result, png_file)
+                plot_time_history(result, png_file,
+                                  verdict=None if irregular else verdict.short)
             else:
                 plot_curve_entry(result, vehicle, png_file, curve=curve)
         click.echo(f"png:        {png_file}")
+
+
+def _provenance(vehicle: Any) -> dict[str, Any]:
+    from railhunt.provenance import provenance
+
+    return provenance(vehicle)
+
+
+def _check_work(vehicle: Any, speed: float, duration: float, method: str, dt: float | None,
+                output_dt: float | None) -> None:  # fmt: skip
+    """Before the run: refuse a stiff damper's step or histories that do not fit in memory
+    (naming the flags that help), and announce a run of more than a minute."""
+    from railhunt import Model
+    from railhunt.simulation import OutputTooLargeError, auto_step, check_output_size
+    from railhunt.units import kmh_to_ms
+    from railhunt.workload import workload
+
+    with user_input("--set/--vehicle: "):
+        step = dt if dt is not None else auto_step(Model(vehicle), kmh_to_ms(speed))
+    try:
+        check_output_size(duration, step, output_dt, method)
+    except OutputTooLargeError as exc:
+        every = f"every {output_dt:g} s" if output_dt is not None else f"every {step:g} s step"
+        hint = (f"--output-dt {exc.output_dt:g}" if exc.output_dt else "--output-dt S")
+        raise CliError(f"--duration {duration:g} s with one sample {every} gives "
+                       f"{exc.rows:.3g} rows, about {exc.nbytes / 1e9:.3g} GB: more than half "
+                       f"the {exc.available / 1e9:.3g} GB of memory available; give {hint} "
+                       "(--output-step) or a shorter --duration") from None
+    if method == "rk4":
+        announce(workload(duration, step, f"{duration:g} s simulated"))
 
 
 def _print_criterion(result: Any, vehicle: Any) -> None:

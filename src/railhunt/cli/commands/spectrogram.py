@@ -8,8 +8,8 @@ from pathlib import Path
 import click
 
 from railhunt.cli.errors import CliError, user_input
-from railhunt.cli.options import check_outputs, file_option, number_range
-from railhunt.cli.output import json_safe, stdout_console
+from railhunt.cli.options import check_outputs, file_option, number_range, overwrite_option
+from railhunt.cli.output import json_safe, stdout_console, traced
 from railhunt.cli.rules import Excludes, Ordered, Requires, command
 
 RULES = (
@@ -63,6 +63,7 @@ RULES = (
 @file_option("--png", "png_file",
              "Draw the STFT amplitude map (time vs frequency, like the paper's Fig. 9a).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of a table.")
+@overwrite_option
 def spectrogram_command(
     csv_file: Path,
     channel: str,
@@ -72,6 +73,7 @@ def spectrogram_command(
     png_file: Path | None,
     as_json: bool,
     full_range: bool = False,
+    overwrite: bool = False,
 ) -> None:
     """Short-time Fourier transform of one channel of a CSV record.
 
@@ -89,7 +91,7 @@ def spectrogram_command(
     steady band at the hunting frequency (a few Hz); after a yaw damper blows
     off it jumps higher (the paper's Fig. 8-9).
     """
-    check_outputs(png=png_file)
+    check_outputs(overwrite=overwrite, png=png_file)
     if not csv_file.exists():
         raise CliError(f"FILE.csv {csv_file}: no such file")
     from railhunt.analysis.spectrogram import dominant_bands, read_channel, stft
@@ -114,7 +116,7 @@ def spectrogram_command(
                 for b in bands
             ],  # fmt: skip
         }
-        click.echo(json.dumps(json_safe(data), allow_nan=False))
+        click.echo(json.dumps(json_safe(_with_source(traced(data), csv_file)), allow_nan=False))
     else:
         from rich.markup import escape
         from rich.table import Table
@@ -141,3 +143,17 @@ def spectrogram_command(
                              fmax=fmax, full_range=full_range)  # fmt: skip
         if not as_json:
             click.echo(f"png: {png_file}")
+
+
+def _with_source(data: dict, csv_file: Path) -> dict:
+    """``data`` with the provenance of the record analysed (``source``): the metadata
+    sidecar ``FILE.csv.meta.json`` that 'railhunt simulate --csv' writes, if there is one."""
+    from railhunt.cli.files import sidecar_path
+
+    side = sidecar_path(csv_file)
+    try:
+        meta = json.loads(side.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return data
+    keep = ("railhunt_version", "vehicle", "vehicle_fingerprint", "command")
+    return {**data, "source": {k: meta[k] for k in keep if k in meta}}

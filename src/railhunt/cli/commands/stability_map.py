@@ -13,19 +13,28 @@ from railhunt.cli.errors import CliError, user_input
 from railhunt.cli.options import (
     build_vehicle,
     cant_option,
-    check_outputs,
     file_option,
     number_range,
     vehicle_options,
 )
-from railhunt.cli.output import fmt, json_safe, show_progress, stdout_console
+from railhunt.cli.output import (
+    command_record,
+    fmt,
+    json_safe,
+    show_progress,
+    stdout_console,
+    traced,
+)
 from railhunt.cli.rules import Excludes, command
 from railhunt.cli.study import (
     STUDY_RULES,
+    announce_study,
+    check_study_outputs,
     check_workers_option,
     optional_out_rules,
     report_lost,
     running_study,
+    scheduler_client,
     study_options,
 )
 
@@ -108,7 +117,8 @@ def stability_map_command(radii: list[float], cant_mm: float | None,
                           deficiency_mm: float | None, outputs: str, png_file: Path | None,
                           csv_file: Path | None, as_json: bool, out: Path | None,
                           resume: bool, overwrite: bool, workers: int | None,
-                          scheduler: str | None, vehicle_file: Path | str | None,
+                          scheduler: str | None, connect_timeout: float,
+                          vehicle_file: Path | str | None,
                           sets: dict[str, float]) -> None:  # fmt: skip
     """``railhunt stability-map`` (help text: ``_HELP``)."""
     from railhunt.studies.stability_map import MAP_OUTPUTS
@@ -117,21 +127,31 @@ def stability_map_command(radii: list[float], cant_mm: float | None,
     chosen = tuple(dict.fromkeys(o.strip() for o in outputs.split(",") if o.strip()))
     if not chosen or any(o not in MAP_OUTPUTS for o in chosen):
         raise CliError(f"--outputs {outputs}: choose from {', '.join(MAP_OUTPUTS)}")
-    check_outputs(png=png_file, csv=csv_file, out=out)
+    check_study_outputs(out, resume, overwrite, png=png_file, csv=csv_file)
     vehicle = build_vehicle(vehicle_file, sets)
 
     from railhunt import stability_map
 
     cant = (cant_mm or 0.0) * 1e-3
     deficiency = None if deficiency_mm is None else deficiency_mm * 1e-3
-    with running_study(out, points="radii"):
+    from railhunt.studies.design import Point
+
+    announce_study(vehicle, [Point(i, "radius", {}) for i in range(len(radii))], chosen,
+                   workers, scheduler, what="radii")  # fmt: skip
+    with running_study(out, points="radii"), \
+            scheduler_client(scheduler, connect_timeout) as client:  # fmt: skip
         result = stability_map(vehicle, radii, cant, cant_deficiency=deficiency,
                                outputs=chosen, out=out, resume=resume, overwrite=overwrite,
-                               scheduler=scheduler, workers=workers,
+                               client=client, workers=workers,
                                progress=show_progress())  # fmt: skip
     if csv_file is not None:
         with user_input("cannot write --csv: "):
             csv_file.write_text(result.to_csv_text(), encoding="utf-8")
+            from railhunt.cli.options import write_sidecar
+            from railhunt.provenance import provenance
+
+            write_sidecar(csv_file, provenance(vehicle), **command_record(),
+                          columns=result.columns)  # fmt: skip
     if png_file is not None and result.rows:
         from railhunt.plots import plot_stability_map
 
@@ -141,11 +161,11 @@ def stability_map_command(radii: list[float], cant_mm: float | None,
         held = ({"cant_mm": cant * 1e3} if deficiency is None
                 else {"cant_deficiency_mm": deficiency * 1e3})  # fmt: skip
         rows = [{**row, "straight_track": row["radius_m"] == math.inf} for row in result.rows]
-        click.echo(json.dumps(json_safe({
+        click.echo(json.dumps(json_safe(traced({
             "vehicle": vehicle.name, **held, "outputs": list(chosen),
             "file": None if out is None else str(out), "points": len(radii),
             "computed": result.computed, "resumed": result.resumed, "lost": result.lost,
-            "elapsed_s": result.elapsed_s, "rows": rows}), indent=1))  # fmt: skip
+            "elapsed_s": result.elapsed_s, "rows": rows}, vehicle)), indent=1))  # fmt: skip
     else:
         _print_map(result, vehicle, cant, deficiency, out)
         for flag, path in (("csv", csv_file), ("png", png_file)):

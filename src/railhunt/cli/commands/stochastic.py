@@ -17,9 +17,11 @@ import click
 from railhunt.cli.errors import user_input
 from railhunt.cli.options import measured_track
 from railhunt.cli.output import (
+    announce,
     json_safe,
     linear_critical_speed_line,
     stdout_console,
+    traced,
     trial_progress,
 )
 
@@ -62,6 +64,7 @@ def report_stochastic_critical_speed(
             track = measured_track(irregularity_file)
         else:
             track = track_irregularity(spectrum, length=track_length, seed=seed)
+    _announce_runs(vehicle, track.length, start_kmh, step_kmh, tol_kmh, dt)
     with trial_progress("stochastic critical speed", count=False) as on_trial, user_input():
         result = stochastic_critical_speed(
             vehicle, irregularity=track, start_kmh=start_kmh, step_kmh=step_kmh,
@@ -119,7 +122,7 @@ def report_stochastic_critical_speed(
                 for a in result.trials
             ],
         }  # fmt: skip
-        click.echo(json.dumps(json_safe(data), allow_nan=False))
+        click.echo(json.dumps(json_safe(traced(data, vehicle)), allow_nan=False))
         return
 
     from rich.table import Table
@@ -157,3 +160,19 @@ def report_stochastic_critical_speed(
                else "every trial speed down to 20 km/h broke the criterion")  # fmt: skip
         console.print(f"stochastic critical speed: not found ({why})")
     console.print(linear_critical_speed_line(linear))
+
+
+def _announce_runs(vehicle: Any, length: float, start_kmh: float, step_kmh: float,
+                   tol_kmh: float, dt: float | None) -> None:  # fmt: skip
+    """Refuse a stiff damper's step, and announce a search of more than a minute."""
+    from railhunt import Model
+    from railhunt.simulation import auto_step
+    from railhunt.units import kmh_to_ms
+    from railhunt.workload import workload
+
+    with user_input("--set/--vehicle: "):
+        step = dt if dt is not None else auto_step(Model(vehicle), kmh_to_ms(start_kmh))
+    trials = 3 + math.ceil(math.log2(max(step_kmh / tol_kmh, 1.0)))
+    per_trial = length / kmh_to_ms(start_kmh)
+    announce(workload(trials * per_trial, step, f"~{trials} runs of {per_trial:.0f} s over "
+                      f"{length:g} m of track"))  # fmt: skip

@@ -9,14 +9,17 @@ from pathlib import Path
 import click
 
 from railhunt.cli.errors import CliError, user_input
-from railhunt.cli.options import build_vehicle, check_outputs, number_range, vehicle_options
-from railhunt.cli.output import fmt, json_safe, show_progress, stdout_console
+from railhunt.cli.options import build_vehicle, number_range, vehicle_options
+from railhunt.cli.output import fmt, json_safe, show_progress, stdout_console, traced
 from railhunt.cli.rules import Excludes, Requires, command
 from railhunt.cli.study import (
     STUDY_RULES,
+    announce_study,
+    check_study_outputs,
     check_workers_option,
     report_lost,
     running_study,
+    scheduler_client,
     study_options,
 )
 
@@ -64,6 +67,8 @@ RULES = (
     *STUDY_RULES,
     Requires("--samples", "--design=random|lhs",
              "--samples is for the random and lhs designs, not {design!r}"),
+    Requires("--design=random|lhs", "--samples",
+             "--design {design} draws its points at random: give their number with --samples N"),
     Excludes("--table1", ("--from", "--to", "--num", "--design!=lines", "--spacing!=linear"),
              "--table1 sets the values itself: drop --from/--to/--num/--design/--spacing"),
 )  # fmt: skip
@@ -84,8 +89,23 @@ def _parse_ties(ctx: click.Context, param: click.Parameter,
         if not sep or not follower or not leader or not math.isfinite(factor):
             raise click.BadParameter(f"{item!r} is not of the form FOLLOWER=LEADER or "
                                      "FOLLOWER=FACTOR*LEADER, e.g. --tie f22=f11")  # fmt: skip
+        for name in (follower, leader):
+            _known_parameter(item, name)
         out[follower] = (leader, factor)
     return out
+
+
+def _known_parameter(item: str, name: str) -> None:
+    """``--tie ITEM``: ``name`` must be a vehicle parameter (suggest close names if not)."""
+    from railhunt.vehicle import PARAMETERS
+    from railhunt.vehicle.parameters import suggest
+
+    if name in PARAMETERS:
+        return
+    close = suggest(name)
+    hint = (f"did you mean {' or '.join(close)}?" if close else
+            f"tie two of the {len(PARAMETERS)} names 'railhunt parameters' lists, e.g. f22=f11")
+    raise click.BadParameter(f"{item!r}: {name!r} is not a vehicle parameter; {hint}")
 
 
 def _pair(names: tuple[str, ...], option: str, values: tuple, default: object = None) -> list:
@@ -173,7 +193,8 @@ def _ranges(names, froms, tos, nums, spacing, design):
 @vehicle_options
 def sweep_command(names, table1, per_section, froms, tos, nums, spacing, design, samples, seed,
                   ties, outputs, frequency_kmh, amplitude_mm, out, resume, overwrite, workers,
-                  scheduler, as_json, vehicle_file, sets) -> None:  # fmt: skip
+                  scheduler, connect_timeout, as_json, vehicle_file,
+                  sets) -> None:  # fmt: skip
     """``railhunt sweep`` (help text: ``_SWEEP_HELP``)."""
     from railhunt import sweep
     from railhunt.studies.store import OUTPUTS
@@ -183,7 +204,7 @@ def sweep_command(names, table1, per_section, froms, tos, nums, spacing, design,
     bad = [o for o in chosen if o not in OUTPUTS]
     if bad or not chosen:
         raise CliError(f"--outputs {outputs}: choose from {', '.join(OUTPUTS)}")
-    check_outputs(out=out)
+    check_study_outputs(out, resume, overwrite)
     vehicle = build_vehicle(vehicle_file, sets)
     if table1:
         from railhunt import table1_study
@@ -200,22 +221,36 @@ def sweep_command(names, table1, per_section, froms, tos, nums, spacing, design,
             if size > MAX_POINTS:
                 raise CliError(f"--design grid gives {size} points: at most {MAX_POINTS} "
                                "(use --design lhs --samples N for large spaces)")  # fmt: skip
+    _announce(vehicle, parameters, design, samples, seed, ties, chosen, workers, scheduler)
     progress = show_progress()
-    with running_study(out):
+    with running_study(out), scheduler_client(scheduler, connect_timeout) as client:
         result = sweep(vehicle, parameters, chosen, design=design, samples=samples,
                        seed=seed, ties=ties, frequency_speed_kmh=frequency_kmh,
                        frequency_amplitude=None if amplitude_mm is None
                        else amplitude_mm * 1e-3, out=out,
-                       resume=resume, overwrite=overwrite, scheduler=scheduler,
+                       resume=resume, overwrite=overwrite, client=client,
                        workers=workers, progress=progress)  # fmt: skip
     if as_json:
-        click.echo(json.dumps(json_safe({
+        click.echo(json.dumps(json_safe(traced({
             "file": str(out), "points": result.meta["points"], "computed": result.computed,
             "resumed": result.resumed, "lost": result.lost, "elapsed_s": result.elapsed_s,
-            "rows": result.rows}), indent=1))  # fmt: skip
+            "rows": result.rows}, vehicle)), indent=1))  # fmt: skip
     else:
         _print_summary(result, out)
     report_lost(result)
+
+
+def _announce(vehicle, parameters, design, samples, seed, ties, outputs, workers,
+              scheduler) -> None:  # fmt: skip
+    """Announce a study of more than a minute (its points as the sweep will build them)."""
+    from railhunt.studies.design import build_design
+
+    try:
+        points = build_design(vehicle, parameters, design, samples, seed,
+                              {f: (lead, k) for f, (lead, k) in ties.items()})  # fmt: skip
+    except ValueError:
+        return  # the sweep reports it, with the names of the flags
+    announce_study(vehicle, points, outputs, workers, scheduler)
 
 
 def _print_summary(result, out: Path) -> None:
