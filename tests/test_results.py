@@ -217,7 +217,8 @@ def test_frequency_table_keeps_nan_as_nan() -> None:
     f = frequency()
     f.orbit_frequency_hz = math.nan
     frame = f.to_dataframe()
-    assert frame.shape == (1, 9)
+    assert frame.shape == (1, 10)  # to_dict's numbers and texts, orbit_rejected included
+    assert frame.attrs["units"]["orbit_rejected"] == ""
     assert math.isnan(frame["orbit_frequency_hz"].iloc[0])
     assert frame["source"].iloc[0] == "limit-cycle"
     assert "5000" not in repr(f)  # the histories stay out of the summary

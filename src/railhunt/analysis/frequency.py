@@ -149,12 +149,13 @@ class HuntingFrequency(ResultDisplay):
                 ("eigenvalue damping ratio", self.eigen_damping_ratio, ""),
                 ("FFT frequency", self.fft_frequency_hz, "Hz"),
                 ("orbit frequency", self.orbit_frequency_hz, "Hz"),
+                ("orbit rejected because", self.orbit_rejected or "-", ""),
                 ("blow-off velocity", self.blowoff_velocity, "m/s")]  # fmt: skip
 
     def _columns(self) -> Columns:
         """One row: the numbers of :meth:`to_dict` (the histories ``t, y`` stay arrays)."""
         units = {"speed_kmh": "km/h", "amplitude": "m", "eigen_damping_ratio": "1",
-                 "source": "", "verdict": ""}  # fmt: skip
+                 "source": "", "verdict": "", "orbit_rejected": ""}  # fmt: skip
         return {key: (getattr(self, key), units.get(key, "Hz")) for key in self.to_dict()}
 
     def to_dict(self) -> dict:
