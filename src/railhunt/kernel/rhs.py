@@ -37,7 +37,7 @@ __all__ = [
 ]  # fmt: skip
 
 
-@njit(cache=True)
+@njit(cache=True, **NO_REFCOUNT)
 def wheel_loads(s_track: float, v: float, wr: np.ndarray,
                 route: np.ndarray) -> tuple[float, float, float]:  # fmt: skip
     """Quasi-static wheel loads (N) and the track's yaw rate (rad/s) at track position ``s``.
@@ -69,7 +69,7 @@ def wheel_loads(s_track: float, v: float, wr: np.ndarray,
     return max(q_mean - shift, floor), max(q_mean + shift, floor), v * kappa
 
 
-@njit(cache=True)
+@njit(cache=True, **NO_REFCOUNT)
 def wheelset_track_forces(
     j: int, t: float, x: np.ndarray, v: float, s: SystemArrays
 ) -> tuple[float, float, float, float, float, float]:
@@ -98,7 +98,7 @@ def wheelset_track_forces(
     return fy, mz, f_l, f_r, q_l, q_r
 
 
-@njit(cache=True)
+@njit(cache=True, **NO_REFCOUNT)
 def curve_offsets(t: float, v: float, wr: np.ndarray, route: np.ndarray, bodies: np.ndarray,
                   body_delay: np.ndarray, geo: np.ndarray) -> None:  # fmt: skip
     """Geometric offsets a curve imposes on the suspension, and the track frames' inertia.
