@@ -28,9 +28,18 @@ from scipy.integrate import solve_ivp
 
 import railhunt
 from railhunt.kernel import damper as rh_damper
-from railhunt.kernel import rhs as rh_rhs
 from railhunt.kernel import track as rh_track
-from railhunt.kernel.layout import FORCE0, N_DOF, N_STATE, RATE0, WHEELSET_PSI, WHEELSET_Y, Y_W1
+from railhunt.kernel import wheelset as rh_wheelset
+from railhunt.kernel.layout import (
+    FORCE0,
+    N_DOF,
+    N_STATE,
+    RATE0,
+    WHEELSET_PSI,
+    WHEELSET_Y,
+    WR,
+    Y_W1,
+)
 from railhunt.model import Model
 from railhunt.simulation import auto_step, default_atol
 from railhunt.units import kmh_to_ms
@@ -95,7 +104,9 @@ def numpy_rhs(model: Model, speed: float, excitation: object) -> Callable:
     trk, trs, offsets = s.track, s.track_samples, s.wheelset_delay
     inv_mass = 1.0 / model.mass
     iy, ip = WHEELSET_Y, WHEELSET_PSI  # wheelsets' lateral displacements and yaw angles
-    wheelset_forces = rh_rhs.wheelset_forces.py_func
+    # The Python body of the wheel/rail forces (its small helpers stay compiled, as before).
+    wheelset_contact = rh_wheelset.wheelset_contact.py_func
+    n_load = wr[WR.N]
     damper_velocity = rh_damper.damper_velocity.py_func
     alignment = rh_track.alignment.py_func
     nq = N_DOF
@@ -108,8 +119,9 @@ def numpy_rhs(model: Model, speed: float, excitation: object) -> Callable:
         dforces = dpar[:, 0] * (bd @ dq - v_visc)
         for j in range(len(iy)):
             yr, slope = alignment(speed * t - offsets[j], trk, trs)
-            fy, mz = wheelset_forces(
-                x[iy[j]] - yr, dq[iy[j]], x[ip[j]], x[ip[j]] - slope, dq[ip[j]], speed, wr
+            fy, mz, _, _ = wheelset_contact(
+                x[iy[j]] - yr, dq[iy[j]], x[ip[j]], x[ip[j]] - slope, dq[ip[j]], dq[ip[j]],
+                speed, wr, n_load, n_load,
             )
             acc[iy[j]] += fy * inv_mass[iy[j]]
             acc[ip[j]] += mz * inv_mass[ip[j]]
