@@ -210,10 +210,6 @@ def _segments(s0: float, pieces: list[tuple[float, float, float, float, float]])
     return rows
 
 
-#: Largest cant of real track (m); studies at a fixed cant deficiency may need more.
-MAX_REAL_CANT = 0.2
-
-
 def cant_for_deficiency(radius: float, cant_deficiency: float, speed: float, g: float = 9.81,
                         rail_distance: float = RAIL_CENTRE_DISTANCE) -> float:  # fmt: skip
     """The cant (m) that leaves ``cant_deficiency`` (m) at ``speed`` (m/s) in a curve.

@@ -15,8 +15,6 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from railhunt.curve import Curve, fixed_deficiency
 from railhunt.studies.execute import CONNECT_TIMEOUT, check_connect_timeout, check_workers
 from railhunt.studies.runner import run_study
@@ -226,9 +224,3 @@ def _describe(vehicle: Vehicle, radii: list[float], cant: float,
     if "critical_speed" in outputs:
         meta["excitation"] = repr(excitation)
     return meta
-
-
-def map_arrays(results: SweepResults) -> dict[str, np.ndarray]:
-    """The columns of a stability map as arrays (radius in m, speeds in km/h)."""
-    return {c: results.column(c) for c in results.columns
-            if c not in ("line", "status", "message")}  # fmt: skip
