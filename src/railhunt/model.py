@@ -132,7 +132,7 @@ class Model:
             damper_rows=np.ascontiguousarray(bd),
             damper_acc=np.ascontiguousarray(-inv_m[:, None] * bd.T),
             damper=dpar,
-            wheel_rail=self.wheel_rail_vector(),
+            wheel_rail=wheel_rail_rows([self.wheel_rail_vector()] * len(WHEELSET_INDEX)),
             wheelsets=WHEELSET_INDEX.copy(),
             wheelset_delay=self.wheelset_offsets(),
             track=trk,
@@ -152,7 +152,8 @@ class Model:
     bd = property(lambda self: self._system.damper_rows)
     dd = property(lambda self: self._system.damper_acc)
     dpar = property(lambda self: self._system.damper)
-    wr = property(lambda self: self._system.wheel_rail)
+    #: The first wheelset's wheel/rail row (every wheelset of this vehicle has the same).
+    wr = property(lambda self: self._system.wheel_rail[0])
 
     def wheel_rail_vector(self) -> np.ndarray:
         """Wheel/rail parameters packed for the kernel (slots :class:`WR`)."""
@@ -271,6 +272,17 @@ class Model:
             _, c1, c2, fu = self.dpar[d]
             flat_o[:, d] = damper_velocity_array(flat_f[:, d], c1, c2, fu)
         return out
+
+
+def wheel_rail_rows(rows: list[np.ndarray]) -> np.ndarray:
+    """One wheel/rail row per wheelset, padded with zeros to the longest (``SystemArrays.
+    wheel_rail``, shape ``(n_wheelsets, width)``); each row's ``WR.TABLE`` slot says how
+    much of its contact table is used."""
+    width = max((len(r) for r in rows), default=N_WR)
+    out = np.zeros((len(rows), width))
+    for j, r in enumerate(rows):
+        out[j, : len(r)] = r
+    return out
 
 
 def _contact_table(contact: object) -> np.ndarray:

@@ -15,8 +15,8 @@ below (``DOF_NAMES``, ``STATE_NAMES``, ``Y_W1``, ``WHEELSET_Y``, ``RATE0``, ``FO
 object layer's assembly, not a new right-hand side.
 
 The parameter vectors the kernel reads are laid out by :class:`WR` (wheel/rail
-parameters, followed by an optional contact table) and :class:`DamperParam` (one row per
-yaw damper).
+parameters, followed by an optional contact table; one row per wheelset) and
+:class:`DamperParam` (one row per yaw damper).
 """
 
 from __future__ import annotations
@@ -302,8 +302,11 @@ class SystemArrays(NamedTuple):
         ``-M^-1 B_d^T``: accelerations per unit damper force.
     damper : numpy.ndarray, shape (n_damper, 4)
         Damper parameters, columns :class:`DamperParam`.
-    wheel_rail : numpy.ndarray
-        Wheel/rail parameters, slots :class:`WR`.
+    wheel_rail : numpy.ndarray, shape (n_wheelsets, width)
+        Wheel/rail parameters, one row per wheelset (slots :class:`WR`), so wheelsets may
+        differ in mass, load, radius, contact geometry and creep law. Rows are padded
+        with zeros to the longest contact table; each row's ``TABLE`` slot says how much
+        of it is used. Slot ``G`` (gravity) is read from the first row.
     wheelsets : numpy.ndarray of int64, shape (n_wheelsets, 2)
         Indices of each wheelset's ``(y, psi)`` in ``q``.
     wheelset_delay : numpy.ndarray, shape (n_wheelsets,)
