@@ -64,11 +64,12 @@ class Model:
     ----------
     vehicle : Vehicle
         Validated vehicle description (SI).
-    creep_law : {"heuristic", "heuristic-per-wheel", "linear", "polach"}
+    creep_law : {"heuristic", "heuristic-per-wheel", "linear", "polach", "vermeulen-johnson"}
         ``"heuristic"``: the paper's Eq. 28 with one factor per wheelset from the mean of
         both wheels' ``beta``; ``"heuristic-per-wheel"``: one factor per wheel;
         ``"linear"``: Kalker's linear law without saturation; ``"polach"``: Polach's
-        saturation per wheel (see :mod:`railhunt.kernel.creep`).
+        saturation per wheel; ``"vermeulen-johnson"``: Eq. 28's cubic per wheel on the
+        creepage forces without spin (see :mod:`railhunt.kernel.creep`).
     contact : railhunt.contact.geometry.ContactGeometry, optional
         Tabulated contact geometry (uniform ``y`` grid) used instead of the vehicle's
         polynomials (Eqs. 32-33): ``r_L, r_R, delta_L, delta_R`` interpolated linearly in

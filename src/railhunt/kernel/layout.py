@@ -286,6 +286,10 @@ class RouteColumn(IntEnum):
 N_ROUTE = len(RouteColumn)
 
 
+#: No bump stop acts against the track (default of ``SystemArrays.stop_wheelset``).
+NO_TRACK_STOPS = np.zeros(0, dtype=np.int64)
+
+
 class SystemArrays(NamedTuple):
     """Everything the compiled right-hand side needs besides ``(t, x, v)``.
 
@@ -335,6 +339,12 @@ class SystemArrays(NamedTuple):
     scratch : numpy.ndarray, shape (3 n_dof,)
         Work space of the curve terms (overwritten at every call; the kernel is used by
         one thread at a time per bundle).
+    stop_wheelset : numpy.ndarray of int64, shape (n_stop,) or (0,)
+        For each bump stop, the wheelset whose rails are its second body (a flange: its
+        deformation is ``stop_rows @ q`` minus the rails' lateral alignment at that
+        wheelset, the track input with the wheelset's delay), -1 for a stop between two
+        bodies of the vehicle. Shorter than ``stop`` (default: empty): the missing stops
+        are between bodies.
     """
 
     linear: np.ndarray
@@ -354,3 +364,4 @@ class SystemArrays(NamedTuple):
     body_delay: np.ndarray
     suspension: np.ndarray
     scratch: np.ndarray
+    stop_wheelset: np.ndarray = NO_TRACK_STOPS

@@ -2,7 +2,8 @@
 
 ``M q'' = -(K + G) q - C q' - B_d^T F_d - B_s^T F_s + Q_wheel/rail (+ curve terms)``, with
 ``K``, ``C`` assembled from the suspension elements, ``G`` the gravitational roll terms,
-``B_d`` the yaw damper elongation rows, ``B_s`` the bump stops' rows and ``Q_wheel/rail``
+``B_d`` the yaw damper elongation rows, ``B_s`` the bump stops' rows (a stop to the track,
+a flange, deforms by ``B_s q`` minus the rails' alignment at its wheelset) and ``Q_wheel/rail``
 the creep and gravitational forces on the wheelsets. Each damper force obeys
 ``dF/dt = K_d (B_d q' - v_d(F))`` (Maxwell element). In a curve every coordinate is
 measured from the track at its body's own position; the suspension then deforms by
@@ -194,11 +195,15 @@ def rhs(t: float, x: np.ndarray, v: float, s: SystemArrays, out: np.ndarray) -> 
         out[fz + d] = dpar[d, DamperParam.K_D] * (rate - v_damp)
         for i in range(nq):
             out[nq + i] += dd[i, d] * f
-    # Bump stops (in a curve corrected below for the geometric offsets).
+    # Bump stops (in a curve corrected below for the geometric offsets); a stop to the
+    # track (a flange) deforms by its wheelset's displacement relative to the rails there.
+    n_track_stop = s.stop_wheelset.shape[0]
     for k in range(stop.shape[0]):
         dist = 0.0
         for i in range(nq):
             dist += stop_rows[k, i] * x[i]
+        if k < n_track_stop and s.stop_wheelset[k] >= 0:
+            dist -= alignment(v * t - delay[s.stop_wheelset[k]], trk, trs)[0]
         f = bump_stop_force(dist, stop[k, StopParam.GAP], stop[k, StopParam.K1],
                             stop[k, StopParam.K3])  # fmt: skip
         if f != 0.0:
@@ -241,6 +246,8 @@ def rhs(t: float, x: np.ndarray, v: float, s: SystemArrays, out: np.ndarray) -> 
             rate += bd[d, k] * geo[nq + k]
         out[fz + d] += dpar[d, DamperParam.K_D] * rate
     for k in range(stop.shape[0]):
+        if k < n_track_stop and s.stop_wheelset[k] >= 0:
+            continue  # a flange: the wheelset's coordinates already follow its own rails
         dist = 0.0
         shift = 0.0
         for i in range(nq):
