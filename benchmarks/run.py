@@ -106,7 +106,6 @@ def numpy_rhs(model: Model, speed: float, excitation: object) -> Callable:
     iy, ip = WHEELSET_Y, WHEELSET_PSI  # wheelsets' lateral displacements and yaw angles
     # The Python body of the wheel/rail forces (its small helpers stay compiled, as before).
     wheelset_contact = rh_wheelset.wheelset_contact.py_func
-    n_load = wr[WR.N]
     damper_velocity = rh_damper.damper_velocity.py_func
     alignment = rh_track.alignment.py_func
     nq = N_DOF
@@ -121,7 +120,7 @@ def numpy_rhs(model: Model, speed: float, excitation: object) -> Callable:
             yr, slope = alignment(speed * t - offsets[j], trk, trs)
             fy, mz, _, _ = wheelset_contact(
                 x[iy[j]] - yr, dq[iy[j]], x[ip[j]], x[ip[j]] - slope, dq[ip[j]], dq[ip[j]],
-                speed, wr, n_load, n_load,
+                speed, wr[j], wr[j, WR.N], wr[j, WR.N],
             )
             acc[iy[j]] += fy * inv_mass[iy[j]]
             acc[ip[j]] += mz * inv_mass[ip[j]]

@@ -64,11 +64,12 @@ class Model:
     ----------
     vehicle : Vehicle
         Validated vehicle description (SI).
-    creep_law : {"heuristic", "heuristic-per-wheel", "linear", "polach"}
+    creep_law : {"heuristic", "heuristic-per-wheel", "linear", "polach", "vermeulen-johnson"}
         ``"heuristic"``: the paper's Eq. 28 with one factor per wheelset from the mean of
         both wheels' ``beta``; ``"heuristic-per-wheel"``: one factor per wheel;
         ``"linear"``: Kalker's linear law without saturation; ``"polach"``: Polach's
-        saturation per wheel (see :mod:`railhunt.kernel.creep`).
+        saturation per wheel; ``"vermeulen-johnson"``: Eq. 28's cubic per wheel on the
+        creepage forces without spin (see :mod:`railhunt.kernel.creep`).
     contact : railhunt.contact.geometry.ContactGeometry, optional
         Tabulated contact geometry (uniform ``y`` grid) used instead of the vehicle's
         polynomials (Eqs. 32-33): ``r_L, r_R, delta_L, delta_R`` interpolated linearly in
@@ -132,7 +133,7 @@ class Model:
             damper_rows=np.ascontiguousarray(bd),
             damper_acc=np.ascontiguousarray(-inv_m[:, None] * bd.T),
             damper=dpar,
-            wheel_rail=self.wheel_rail_vector(),
+            wheel_rail=wheel_rail_rows([self.wheel_rail_vector()] * len(WHEELSET_INDEX)),
             wheelsets=WHEELSET_INDEX.copy(),
             wheelset_delay=self.wheelset_offsets(),
             track=trk,
@@ -152,7 +153,8 @@ class Model:
     bd = property(lambda self: self._system.damper_rows)
     dd = property(lambda self: self._system.damper_acc)
     dpar = property(lambda self: self._system.damper)
-    wr = property(lambda self: self._system.wheel_rail)
+    #: The first wheelset's wheel/rail row (every wheelset of this vehicle has the same).
+    wr = property(lambda self: self._system.wheel_rail[0])
 
     def wheel_rail_vector(self) -> np.ndarray:
         """Wheel/rail parameters packed for the kernel (slots :class:`WR`)."""
@@ -271,6 +273,17 @@ class Model:
             _, c1, c2, fu = self.dpar[d]
             flat_o[:, d] = damper_velocity_array(flat_f[:, d], c1, c2, fu)
         return out
+
+
+def wheel_rail_rows(rows: list[np.ndarray]) -> np.ndarray:
+    """One wheel/rail row per wheelset, padded with zeros to the longest (``SystemArrays.
+    wheel_rail``, shape ``(n_wheelsets, width)``); each row's ``WR.TABLE`` slot says how
+    much of its contact table is used."""
+    width = max((len(r) for r in rows), default=N_WR)
+    out = np.zeros((len(rows), width))
+    for j, r in enumerate(rows):
+        out[j, : len(r)] = r
+    return out
 
 
 def _contact_table(contact: object) -> np.ndarray:

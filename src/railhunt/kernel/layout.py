@@ -15,8 +15,8 @@ below (``DOF_NAMES``, ``STATE_NAMES``, ``Y_W1``, ``WHEELSET_Y``, ``RATE0``, ``FO
 object layer's assembly, not a new right-hand side.
 
 The parameter vectors the kernel reads are laid out by :class:`WR` (wheel/rail
-parameters, followed by an optional contact table) and :class:`DamperParam` (one row per
-yaw damper).
+parameters, followed by an optional contact table; one row per wheelset) and
+:class:`DamperParam` (one row per yaw damper).
 """
 
 from __future__ import annotations
@@ -286,6 +286,10 @@ class RouteColumn(IntEnum):
 N_ROUTE = len(RouteColumn)
 
 
+#: No bump stop acts against the track (default of ``SystemArrays.stop_wheelset``).
+NO_TRACK_STOPS = np.zeros(0, dtype=np.int64)
+
+
 class SystemArrays(NamedTuple):
     """Everything the compiled right-hand side needs besides ``(t, x, v)``.
 
@@ -302,8 +306,11 @@ class SystemArrays(NamedTuple):
         ``-M^-1 B_d^T``: accelerations per unit damper force.
     damper : numpy.ndarray, shape (n_damper, 4)
         Damper parameters, columns :class:`DamperParam`.
-    wheel_rail : numpy.ndarray
-        Wheel/rail parameters, slots :class:`WR`.
+    wheel_rail : numpy.ndarray, shape (n_wheelsets, width)
+        Wheel/rail parameters, one row per wheelset (slots :class:`WR`), so wheelsets may
+        differ in mass, load, radius, contact geometry and creep law. Rows are padded
+        with zeros to the longest contact table; each row's ``TABLE`` slot says how much
+        of it is used. Slot ``G`` (gravity) is read from the first row.
     wheelsets : numpy.ndarray of int64, shape (n_wheelsets, 2)
         Indices of each wheelset's ``(y, psi)`` in ``q``.
     wheelset_delay : numpy.ndarray, shape (n_wheelsets,)
@@ -332,6 +339,12 @@ class SystemArrays(NamedTuple):
     scratch : numpy.ndarray, shape (3 n_dof,)
         Work space of the curve terms (overwritten at every call; the kernel is used by
         one thread at a time per bundle).
+    stop_wheelset : numpy.ndarray of int64, shape (n_stop,) or (0,)
+        For each bump stop, the wheelset whose rails are its second body (a flange: its
+        deformation is ``stop_rows @ q`` minus the rails' lateral alignment at that
+        wheelset, the track input with the wheelset's delay), -1 for a stop between two
+        bodies of the vehicle. Shorter than ``stop`` (default: empty): the missing stops
+        are between bodies.
     """
 
     linear: np.ndarray
@@ -351,3 +364,4 @@ class SystemArrays(NamedTuple):
     body_delay: np.ndarray
     suspension: np.ndarray
     scratch: np.ndarray
+    stop_wheelset: np.ndarray = NO_TRACK_STOPS
