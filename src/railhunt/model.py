@@ -136,6 +136,16 @@ class Model:
         )
 
     @property
+    def half_gauge(self) -> float:
+        """Half the distance between the leading wheelset's contact points (m)."""
+        return float(self._system.wheel_rail[0, WR.A])
+
+    @property
+    def gravity(self) -> float:
+        """Acceleration of gravity of the model (m/s^2)."""
+        return float(self._system.wheel_rail[0, WR.G])
+
+    @property
     def n_state(self) -> int:
         """Length of this model's state vector."""
         return self.layout.n_state

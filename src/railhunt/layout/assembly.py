@@ -97,7 +97,8 @@ class Assembly:
 @lru_cache(maxsize=64)
 def state_layout(spec: LayoutSpec) -> StateLayout:
     """The state vector's slots of a layout: its moving bodies and its Maxwell elements."""
-    bodies = tuple(Body(b.name, b.tag, b.coordinates) for b in spec.bodies if b.coordinates)
+    bodies = tuple(Body(b.name, b.tag, b.coordinates, b.kind) for b in spec.bodies
+                   if b.coordinates)  # fmt: skip
     n_d = sum(1 for el in spec.elements if el.kind == "maxwell")
     return StateLayout(bodies=bodies, dampers=tuple(f"d{k + 1}" for k in range(n_d)))
 
