@@ -268,7 +268,8 @@ stiffness = 1.0e5
 def test_cycle_in_parameters(tmp_path):
     text = PAPER_TEXT.replace("[parameters.M_c]\nvalue = 28000.0",
                               '[parameters.M_c]\nvalue = "M_t * 2"', 1)
-    text = text.replace("[parameters.M_t]\nvalue = 3000.0", '[parameters.M_t]\nvalue = "M_c / 2"', 1)
+    text = text.replace("[parameters.M_t]\nvalue = 3000.0",
+                        '[parameters.M_t]\nvalue = "M_c / 2"', 1)
     with pytest.raises(LayoutError, match="cycle: M_c -> M_t -> M_c"):
         load_vehicle(write(tmp_path, text))
 
