@@ -362,7 +362,7 @@ def stochastic_critical_speed(
     min_kmh: float = 20.0,
     max_kmh: float = 800.0,
     dt: float | None = None,
-    creep_law: str = "heuristic",
+    creep_law: str | None = None,
     f0_hz: float | None = None,
     progress: Callable[[Assessment], None] | None = None,
 ) -> StochasticCriticalSpeedResult:

@@ -48,11 +48,19 @@ class Body:
     coordinates : tuple of str
         Its coordinates in state order, from ``"y"`` (lateral, m), ``"psi"`` (yaw, rad)
         and ``"phi"`` (roll, rad).
+    kind : str
+        ``"car"``, ``"frame"``, ``"wheelset"``; empty: from the name (``wheelset*``).
     """
 
     name: str
     tag: str
     coordinates: tuple[str, ...]
+    kind: str = ""
+
+    @property
+    def is_wheelset(self) -> bool:
+        """Whether the body is a wheelset (runs on the rails)."""
+        return self.kind == "wheelset" or (not self.kind and self.name.startswith("wheelset"))
 
 
 @dataclass(frozen=True)
@@ -136,7 +144,7 @@ class StateLayout:
     @property
     def wheelsets(self) -> tuple[str, ...]:
         """Names of the wheelsets (bodies named ``wheelset*``), leading first."""
-        return tuple(b.name for b in self.bodies if b.name.startswith("wheelset"))
+        return tuple(b.name for b in self.bodies if b.is_wheelset)
 
     def body_index(self) -> np.ndarray:
         """Indices of ``(y, psi, phi)`` of every body in ``q`` (-1: none), shape (n, 3)."""
@@ -147,6 +155,33 @@ class StateLayout:
         return np.array(
             [self.body_dofs(w)[:2] for w in self.wheelsets], dtype=np.int64
         ).reshape(-1, 2)
+
+    @property
+    def wheelset_y(self) -> np.ndarray:
+        """Indices of the wheelsets' lateral displacements in ``q`` (and the state)."""
+        return self.wheelset_index()[:, 0].copy()
+
+    @property
+    def wheelset_psi(self) -> np.ndarray:
+        """Indices of the wheelsets' yaw angles in ``q``."""
+        return self.wheelset_index()[:, 1].copy()
+
+    @property
+    def y_w1(self) -> int:
+        """Index of the leading (first) wheelset's lateral displacement."""
+        return int(self.wheelset_index()[0, 0])
+
+    @property
+    def body_y(self) -> np.ndarray:
+        """Indices of the lateral displacements of the bodies that are not wheelsets."""
+        return np.array([self.body_dofs(b.name)[0] for b in self.bodies
+                         if not b.is_wheelset and "y" in b.coordinates],
+                        dtype=np.int64)  # fmt: skip
+
+    @property
+    def forces(self) -> slice:
+        """Slice of the damper forces in the state vector."""
+        return slice(self.force0, self.force0 + self.n_damper)
 
 
 _LATERAL_YAW_ROLL = ("y", "psi", "phi")
