@@ -112,7 +112,14 @@ def _tmp(text: str) -> Path:
 def test_suspension_alone_is_passive():
     """Without the wheel/rail forces and gravity, springs, dampers and Maxwell elements
     dissipate: no eigenvalue with a positive real part."""
-    asm = PAPER.assembly
+    w = _suspension_eigenvalues(PAPER)
+    assert np.max(w.real) < 1e-6 * np.max(np.abs(w))
+
+
+def _suspension_eigenvalues(vehicle: Vehicle) -> np.ndarray:
+    """Eigenvalues of the suspension alone (no wheel/rail forces, no gravity; the Maxwell
+    elements linear, in their first stage)."""
+    asm = vehicle.assembly
     n, nd = asm.layout.n_dof, asm.layout.n_damper
     inv_m = 1.0 / asm.mass
     a = np.zeros((2 * n + nd, 2 * n + nd))
@@ -123,8 +130,7 @@ def test_suspension_alone_is_passive():
     k_d, c_1 = asm.damper[:, DamperParam.K_D], asm.damper[:, DamperParam.C_D1]
     a[2 * n:, n:2 * n] = k_d[:, None] * asm.damper_rows
     a[2 * n:, 2 * n:] = -np.diag(k_d / c_1)
-    w = np.linalg.eigvals(a)
-    assert np.max(w.real) < 1e-6 * np.max(np.abs(w))
+    return np.linalg.eigvals(a)
 
 
 def test_suspension_forces_sum_to_zero():
@@ -163,6 +169,86 @@ def test_fixed_body_is_an_infinitely_heavy_one():
     s_fixed = linear_critical_speed(v_fixed).speed_kmh
     s_heavy = linear_critical_speed(v_heavy).speed_kmh
     assert math.isfinite(s_fixed)
+    assert abs(s_fixed - s_heavy) <= 1e-3 * s_heavy
+
+
+# --------------------------------------------------------------------------- every layout
+
+def _layouts() -> list[tuple[str, Vehicle]]:
+    from railhunt.vehicle import shipped_vehicles
+
+    out = [(name, Vehicle.shipped(name)) for name in shipped_vehicles()]
+    example = ROOT / "examples" / "data" / "articulated_pair.toml"
+    if example.is_file():
+        out.append(("articulated_pair", load_vehicle(example)))
+    return out
+
+
+LAYOUTS = _layouts()
+
+
+@pytest.mark.parametrize(("name", "vehicle"), LAYOUTS, ids=[n for n, _ in LAYOUTS])
+def test_every_layout_is_odd_symmetric(name, vehicle):
+    """Mirrored elements: rhs(-x) = -rhs(x) at random states (the left/right symmetry the
+    half-period shooting uses)."""
+    model = Model(vehicle)
+    rng = np.random.default_rng(7)
+    for _ in range(3):
+        x = rng.normal(scale=1e-3, size=model.n_state)
+        x[model.layout.forces] *= 1e6
+        a, b = model.derivative(-x, 40.0), -model.derivative(x, 40.0)
+        np.testing.assert_allclose(a, b, rtol=1e-10, atol=1e-9 * np.abs(b).max())
+
+
+@pytest.mark.parametrize(("name", "vehicle"), LAYOUTS, ids=[n for n, _ in LAYOUTS])
+def test_every_layouts_suspension_is_passive(name, vehicle):
+    assert np.max(_suspension_eigenvalues(vehicle).real) < 1e-6 * np.max(
+        np.abs(_suspension_eigenvalues(vehicle)))  # fmt: skip
+
+
+@pytest.mark.parametrize(("name", "vehicle"), LAYOUTS, ids=[n for n, _ in LAYOUTS])
+def test_every_layouts_internal_forces_sum_to_zero(name, vehicle):
+    """The springs and dampers between moving bodies: a rigid lateral shift or yaw of the
+    whole vehicle deforms none, so their forces on all bodies add up to zero."""
+    from railhunt.suspension import assemble, suspension_elements
+
+    asm = vehicle.assembly
+    lay = asm.layout
+    k, c = assemble(suspension_elements(vehicle), lay)
+    xs = {b.name: b.x(vehicle.values) for b in vehicle.layout.bodies}
+    shift, turn = np.zeros(lay.n_dof), np.zeros(lay.n_dof)
+    for b in lay.bodies:
+        iy, ipsi, _ = lay.body_dofs(b.name)
+        shift[iy] = 1.0
+        if ipsi >= 0:
+            turn[iy], turn[ipsi] = xs[b.name], 1.0
+    for u in (shift, turn):
+        for matrix in (k, c):
+            np.testing.assert_allclose(matrix @ u, 0.0, atol=1e-9 * max(np.abs(matrix).max(), 1))
+
+
+def test_fixed_body_of_the_cooperrider_bogie_is_an_infinitely_heavy_one():
+    from railhunt.analysis.linear import linear_critical_speed
+
+    text = Path(str(shipped_path("cooperrider_bogie"))).read_text(encoding="utf-8")
+    block = 'kind = "fixed"\nx = 0.0\nheight = "r0 + h1 + h2"\n'
+    assert block in text
+    heavy = text.replace(block, block.replace('"fixed"', '"car"') + 'coordinates = ["y", "psi"]'
+                         '\nmass = "1e9 * m_f"\nyaw_inertia = "1e9 * I_f"\n')
+    s_fixed = linear_critical_speed(Vehicle.shipped("cooperrider_bogie")).speed_kmh
+    assert math.isfinite(s_fixed)
+    # The heavy body adds its own modes, almost undamped at |lambda| ~ 1e-3 1/s, whose
+    # real parts are finite-difference noise (+-1e-8 1/s): the crossing is that of the
+    # other modes.
+    model = Model(load_vehicle(_tmp(heavy)))
+
+    def growth(kmh: float) -> float:
+        w = np.linalg.eigvals(model.jacobian(kmh / 3.6))
+        return float(np.max(w.real[np.abs(w) > 1e-2]))
+
+    from scipy.optimize import brentq
+
+    s_heavy = brentq(growth, 0.8 * s_fixed, 1.2 * s_fixed, xtol=1e-3)
     assert abs(s_fixed - s_heavy) <= 1e-3 * s_heavy
 
 

@@ -47,7 +47,7 @@ _TABLE_KEYS = frozenset({"value", "unit", "meaning", "source"})
 # a file of the paper's parameters may carry them: the paper's own rules apply).
 _RULE_KEYS = frozenset({"rule", "min", "max", "above", "below", "reason", "default",
                         "greater_than"})  # fmt: skip
-_VEHICLE_KEYS = frozenset({"name", "description", "base", "gravity"})
+_VEHICLE_KEYS = frozenset({"name", "description", "base", "gravity", "source"})
 _LAYOUT_SECTIONS = frozenset({"body", "element", "wheel_rail"})
 _CONTACT_KEYS = frozenset({"wheel", "rail", "rail_inclination", "gauge", "back_to_back",
                            "wheel_radius", "y_max", "y_step"})  # fmt: skip
@@ -256,7 +256,7 @@ def _build_vehicle(data: dict[str, Any], where: str, default_name: str, depth: i
             f"{where}: unknown key(s) {sorted(bad)} in [vehicle]; "
             f"allowed: {', '.join(sorted(_VEHICLE_KEYS))}"
         )
-    for key in ("name", "description", "base"):
+    for key in ("name", "description", "base", "source"):
         if key in meta and not isinstance(meta[key], str):
             raise VehicleFileError(f"{where}: [vehicle] {key} must be a string")
 
