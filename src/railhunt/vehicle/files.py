@@ -113,6 +113,7 @@ def _layout_from_data(data: dict[str, Any], where: str) -> tuple["LayoutSpec", d
 
 
 _RESERVED = frozenset({"name", "description", "contact", "layout", "values", "v_u",
+                       "gravity", "blowoff_force", "length",
                        "assembly", "parameters", "source", "replace", "derived", "as_dict",
                        "to_toml", "shipped", "load", "from_toml", "paper2019",
                        "parameter_table"})  # fmt: skip
