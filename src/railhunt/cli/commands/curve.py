@@ -167,7 +167,7 @@ def _print_state(state: Any, vehicle: Any, curve: Any) -> None:
     stops = ", ".join(f"{f * 1e-3:.2f}" for f in state.bump_stop_force)
     gaps = ", ".join(sorted({f"{g * 1e3:g}" for g in vehicle.assembly.stop[:, 0]}))
     if stops:
-        what = ("secondary lateral bump stops" if np.all(vehicle.assembly.stop_track < 0)
+        what = ("secondary lateral bump stops" if (vehicle.assembly.stop_track < 0).all()
                 else "stops and flange contacts")  # fmt: skip
         out.print(f"{what}: {stops} kN (free play {gaps} mm)")
     verdict = "[green]stable[/green]" if state.stable else "[red]unstable[/red]"
