@@ -47,7 +47,7 @@ _TABLE_KEYS = frozenset({"value", "unit", "meaning", "source"})
 # a file of the paper's parameters may carry them: the paper's own rules apply).
 _RULE_KEYS = frozenset({"rule", "min", "max", "above", "below", "reason", "default",
                         "greater_than"})  # fmt: skip
-_VEHICLE_KEYS = frozenset({"name", "description", "base", "gravity"})
+_VEHICLE_KEYS = frozenset({"name", "description", "base", "gravity", "source"})
 _LAYOUT_SECTIONS = frozenset({"body", "element", "wheel_rail"})
 _CONTACT_KEYS = frozenset({"wheel", "rail", "rail_inclination", "gauge", "back_to_back",
                            "wheel_radius", "y_max", "y_step"})  # fmt: skip
