@@ -298,6 +298,17 @@ def main(argv: list[str] | None = None) -> int:
         f"{repeat} repeats (baseline {repeat_baseline}), median of warm runs\n"
     )
 
+    # A sweep point builds its vehicle (the layout's assembly) and its Model: from the
+    # parsed layout, no file read; reading a layout file is once per study.
+    t_point, _ = median_time(lambda: Model(vehicle.replace(C_d1=vehicle.C_d1 * 1.01)),
+                             max(repeat, 20))  # fmt: skip
+    rows.append(Row("build a Model for one sweep point (paper2019 layout)", t_point, 0.010))
+    from railhunt.vehicle.files import shipped_path
+
+    path = str(shipped_path("paper2019"))
+    t_file, _ = median_time(lambda: Model(railhunt.load_vehicle(path)), max(repeat, 5))
+    rows.append(Row("read the paper2019 layout file and build its Model", t_file, 0.100))
+
     t_rk4, _ = median_time(
         lambda: railhunt.simulate(vehicle, SPEED_KMH, duration=DURATION, excitation=exc), repeat
     )

@@ -255,7 +255,7 @@ class Model:
         f = np.asarray(damper_forces, dtype=np.float64)
         out = np.empty_like(f)
         n_damper = self.layout.n_damper
-        if n_damper == 0:  # a layout without yaw dampers
+        if n_damper == 0:
             return out
         flat_f, flat_o = f.reshape(-1, n_damper), out.reshape(-1, n_damper)
         for d in range(n_damper):

@@ -31,7 +31,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from railhunt.kernel.damper import damper_force_steady, damper_velocity
-from railhunt.kernel.layout import BODY_DOFS, DAMPER_NAMES, DOF_NAMES, N_DAMPER, N_DOF
+from railhunt.kernel.layout import (
+    BODY_DOFS,
+    DAMPER_NAMES,
+    DOF_NAMES,
+    LAYOUT,
+    N_DAMPER,
+    N_DOF,
+    StateLayout,
+)
 from railhunt.vehicle import Vehicle
 
 __all__ = [
@@ -70,14 +78,15 @@ class Element:
     point_b: tuple[float, float, float]
     coefficient: float
 
-    def deformation_row(self) -> np.ndarray:
+    def deformation_row(self, layout: StateLayout = LAYOUT) -> np.ndarray:
         """Row ``B`` with ``deformation = B @ q`` (point b minus point a along the axis)."""
-        return point_row(self.body_b, self.point_b, self.axis) - point_row(
-            self.body_a, self.point_a, self.axis
+        return point_row(self.body_b, self.point_b, self.axis, layout) - point_row(
+            self.body_a, self.point_a, self.axis, layout
         )
 
 
-def point_row(body: str, point: tuple[float, float, float], axis: str) -> np.ndarray:
+def point_row(body: str, point: tuple[float, float, float], axis: str,
+              layout: StateLayout = LAYOUT) -> np.ndarray:  # fmt: skip
     """Displacement of a body-fixed point along ``axis`` as a row over the coordinates q.
 
     Parameters
@@ -88,20 +97,24 @@ def point_row(body: str, point: tuple[float, float, float], axis: str) -> np.nda
         ``(px, py, pz)`` in m relative to the body's centre of gravity.
     axis : {"x", "y", "z"}
         Displacement component.
+    layout : StateLayout
+        The state layout (default: the paper's vehicle).
 
     Returns
     -------
     numpy.ndarray
-        Row of length ``N_DOF`` (m per m or m per rad).
+        Row of length ``n_dof`` (m per m or m per rad).
     """
-    iy, ipsi, iphi = BODY_DOFS[body]
+    iy, ipsi, iphi = layout.body_dofs(body)
     px, py, pz = point
-    row = np.zeros(N_DOF)
+    row = np.zeros(layout.n_dof)
     if axis == "x":
-        row[ipsi] = -py
+        if ipsi >= 0:
+            row[ipsi] = -py
     elif axis == "y":
         row[iy] = 1.0
-        row[ipsi] = px
+        if ipsi >= 0:
+            row[ipsi] = px
         if iphi >= 0:
             row[iphi] = pz
     elif axis == "z":
@@ -141,8 +154,10 @@ def suspension_elements(vehicle: Vehicle) -> list[Element]:
     return out
 
 
-def assemble(elements: list[Element]) -> tuple[np.ndarray, np.ndarray]:
-    """Stiffness and damping matrices of a set of elements.
+def assemble(elements: list[Element],
+             layout: StateLayout = LAYOUT) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+    """Stiffness and damping matrices of a set of elements (coordinates of ``layout``,
+    default the paper's vehicle).
 
     Returns
     -------
@@ -151,10 +166,11 @@ def assemble(elements: list[Element]) -> tuple[np.ndarray, np.ndarray]:
     C : numpy.ndarray, shape (N_DOF, N_DOF)
         Damping matrix (N*s/m, ...), symmetric.
     """
-    K = np.zeros((N_DOF, N_DOF))
-    C = np.zeros((N_DOF, N_DOF))
+    n = layout.n_dof
+    K = np.zeros((n, n))
+    C = np.zeros((n, n))
     for el in elements:
-        b = el.deformation_row()
+        b = el.deformation_row(layout)
         target = K if el.kind == "spring" else C
         target += el.coefficient * np.outer(b, b)
     return K, C

@@ -102,7 +102,8 @@ def parse_layout(data: dict[str, Any], where: str) -> LayoutSpec:
     meta = data.get("vehicle", {})
     gravity = _expr(meta.get("gravity", 9.81), f"{where}: [vehicle] gravity")
     return LayoutSpec(bodies=tuple(bodies), elements=tuple(elements), wheel_rail=common,
-                      gravity=gravity, consistency=(), source=where)  # fmt: skip
+                      gravity=gravity, consistency=(), source=where,
+                      citation=str(meta.get("source", "")))  # fmt: skip
 
 
 def _bodies(table: object, where: str) -> list[BodySpec]:

@@ -157,6 +157,8 @@ class LayoutSpec:
         The vehicle's parameters (name, unit, meaning, rule, default), in order.
     sources : tuple of (str, str)
         Where each parameter's value comes from.
+    citation : str
+        Where the vehicle comes from (``[vehicle] source``: one line).
     """
 
     bodies: tuple[BodySpec, ...]
@@ -167,6 +169,7 @@ class LayoutSpec:
     source: str = field(default="", compare=False)
     parameters: tuple[ParameterSpec, ...] = ()
     sources: tuple[tuple[str, str], ...] = field(default=(), compare=False)
+    citation: str = field(default="", compare=False)
 
     @property
     def specs(self) -> dict[str, ParameterSpec]:

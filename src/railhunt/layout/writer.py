@@ -43,6 +43,8 @@ def layout_toml(vehicle: Any) -> str:
         f"description = {toml_string(vehicle.description)}",
         f"gravity = {_value(layout.gravity)}",
     ]
+    if layout.citation:
+        lines.append(f"source = {toml_string(layout.citation)}")
     for spec in layout.parameters:
         lines += ["", f"[parameters.{spec.name}]",
                   f"value = {float(vehicle.values[spec.name])!r}"]  # fmt: skip

@@ -59,7 +59,7 @@ def curve_for(vehicle: Vehicle, radius: float, cant: float, cant_deficiency: flo
     if radius == math.inf:
         return None
     if cant_deficiency is not None:
-        return fixed_deficiency(radius, cant_deficiency, direction, g=vehicle.g)
+        return fixed_deficiency(radius, cant_deficiency, direction, g=vehicle.gravity)
     return Curve(radius, cant, direction=direction)
 
 

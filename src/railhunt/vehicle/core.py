@@ -212,6 +212,27 @@ class Vehicle:
         return float(self.assembly.wheel_rail[0, WR.N])
 
     @property
+    def gravity(self) -> float:
+        """Acceleration of gravity of the layout (m/s^2; ``g`` for the paper's vehicle)."""
+        from railhunt.kernel.layout import WR
+
+        return float(self.assembly.wheel_rail[0, WR.G])
+
+    @property
+    def blowoff_force(self) -> float:
+        """Blow-off force of the first Maxwell element (N; ``F_u`` for the paper's
+        vehicle); NaN for a layout without one."""
+        from railhunt.kernel.layout import DamperParam
+
+        d = self.assembly.damper
+        return float(d[0, DamperParam.F_U]) if d.shape[0] else float("nan")
+
+    @property
+    def length(self) -> float:
+        """Distance from the leading to the last wheelset (m)."""
+        return float(self.assembly.wheelset_delay.max())
+
+    @property
     def assembly(self) -> "Assembly":
         """The layout's matrices and rows for these values (built once)."""
         return self.__dict__["_assembly"]

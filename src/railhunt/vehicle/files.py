@@ -113,6 +113,7 @@ def _layout_from_data(data: dict[str, Any], where: str) -> tuple["LayoutSpec", d
 
 
 _RESERVED = frozenset({"name", "description", "contact", "layout", "values", "v_u",
+                       "gravity", "blowoff_force", "length",
                        "assembly", "parameters", "source", "replace", "derived", "as_dict",
                        "to_toml", "shipped", "load", "from_toml", "paper2019",
                        "parameter_table"})  # fmt: skip
@@ -256,7 +257,7 @@ def _build_vehicle(data: dict[str, Any], where: str, default_name: str, depth: i
             f"{where}: unknown key(s) {sorted(bad)} in [vehicle]; "
             f"allowed: {', '.join(sorted(_VEHICLE_KEYS))}"
         )
-    for key in ("name", "description", "base"):
+    for key in ("name", "description", "base", "source"):
         if key in meta and not isinstance(meta[key], str):
             raise VehicleFileError(f"{where}: [vehicle] {key} must be a string")
 
