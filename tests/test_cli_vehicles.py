@@ -49,3 +49,28 @@ def test_vehicle_refuses_an_unknown_name_in_one_line():
     result = run("vehicle", "no_such_vehicle")
     assert result.exit_code == 2
     assert "'no_such_vehicle' is neither a file nor a shipped vehicle" in result.output
+
+
+def test_eigen_draws_the_hunting_mode_of_any_layout(tmp_path):
+    png = tmp_path / "mode.png"
+    result = run("eigen", "--vehicle", "cooperrider_bogie", "--from", "200", "--to", "260",
+                 "--step", "20", "--mode-png", str(png))
+    assert result.exit_code == 0, result.output
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_the_hunting_mode_shape_is_the_crossing_eigenvector():
+    """The drawn shape is normalised to a largest lateral amplitude of 1 (phase 0) and
+    belongs to an eigenvalue on the imaginary axis at the Hopf point."""
+    import numpy as np
+    import pytest
+
+    import railhunt
+    from railhunt.plots.layout import hunting_mode_shape
+
+    model, speed, lam, q = hunting_mode_shape(railhunt.Vehicle.shipped("cooperrider_bogie"), None)
+    assert abs(lam.real) < 1e-3
+    assert lam.imag / (2 * np.pi) == pytest.approx(4.0, abs=0.05)
+    lateral = np.concatenate([model.layout.body_y, model.layout.wheelset_y]).astype(int)
+    assert np.max(np.abs(q[lateral])) == pytest.approx(1.0)
+    assert 240.0 < speed < 250.0

@@ -18,7 +18,8 @@ from matplotlib.patches import Circle, Rectangle
 
 from railhunt.plots.figure import new_figure, save_figure
 
-__all__ = ["ELEMENT_STYLE", "layout_figure", "plot_layout"]
+__all__ = ["ELEMENT_STYLE", "hunting_mode_figure", "hunting_mode_shape", "layout_figure",
+           "plot_hunting_mode", "plot_layout"]
 
 #: Marker, colour and label of each element kind (an element to the track: its own style).
 ELEMENT_STYLE: dict[str, tuple[str, str, str]] = {
@@ -142,3 +143,103 @@ def layout_figure(vehicle: Any) -> Any:
 def plot_layout(vehicle: Any, path: str | os.PathLike[str]) -> Path:
     """Save :func:`layout_figure` of ``vehicle`` to ``path`` (format from the suffix)."""
     return save_figure(layout_figure(vehicle), path)
+
+
+def hunting_mode_shape(vehicle: Any, speed_kmh: float | None = None,
+                       ) -> tuple[Any, float, complex, Any]:  # fmt: skip
+    """The least-damped oscillating mode at ``speed_kmh`` (default: the Hopf point).
+
+    Returns
+    -------
+    tuple
+        ``(model, speed_kmh, eigenvalue, shape)``: the Model, the speed (km/h), the
+        eigenvalue (1/s, Im > 0) and the mode's coordinates (complex, over
+        ``model.layout.dof_names``), scaled so that the largest lateral amplitude of a body
+        or wheelset is 1 at phase 0.
+    """
+    import numpy as np
+
+    from railhunt.analysis.linear import linear_critical_speed
+    from railhunt.analysis.modes import sorted_eig
+    from railhunt.model import Model
+
+    model = Model(vehicle)
+    if speed_kmh is None:
+        speed_kmh = float(linear_critical_speed(vehicle).speed_kmh)
+        if not np.isfinite(speed_kmh):
+            raise ValueError(f"vehicle {vehicle.name!r} has no Hopf point between 20 and "
+                             "1000 km/h: give the speed of the mode to draw")  # fmt: skip
+    w, vecs = sorted_eig(model.jacobian(speed_kmh / 3.6))
+    k = next(i for i in range(w.size) if w[i].imag > 1e-6)
+    q = vecs[: model.layout.n_dof, k]
+    lateral = np.concatenate([model.layout.body_y, model.layout.wheelset_y]).astype(int)
+    ref = q[lateral[int(np.argmax(np.abs(q[lateral])))]]
+    return model, speed_kmh, complex(w[k]), q / ref
+
+
+def hunting_mode_figure(vehicle: Any, speed_kmh: float | None = None,
+                        scale: float = 0.4) -> Any:  # fmt: skip
+    """Plan view of the hunting mode's shape: each body's lateral and yaw motion.
+
+    Parameters
+    ----------
+    vehicle : railhunt.Vehicle
+        Any layout.
+    speed_kmh : float, optional
+        Speed of the linearisation (km/h); default: the Hopf point (the linear critical
+        speed).
+    scale : float
+        Drawn size of the largest lateral amplitude (m): the mode has no amplitude of its
+        own.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        For four phases of the oscillation (0, 90, 180, 270 degrees, shades of one
+        colour) every moving body's centre line displaced by ``y + psi (x - x_b)``; fixed
+        bodies dashed. The title gives the eigenvalue; the side table each body's
+        amplitude (lateral in units of the largest, yaw times the half gauge) and phase.
+    """
+    import numpy as np
+
+    model, speed_kmh, lam, q = hunting_mode_shape(vehicle, speed_kmh)
+    bodies, _, a, _ = _geometry(vehicle)
+    x_lo = min(b["outline"][0] for b in bodies) - 0.5
+    x_hi = max(b["outline"][1] for b in bodies) + 0.5
+    fig = new_figure(min(18.0, max(8.0, 0.5 * (x_hi - x_lo) + 3.0)), 4.2)
+    ax = fig.subplots()
+    index = {b.name: model.layout.body_dofs(b.name) for b in model.layout.bodies}
+    lines = []
+    for b in bodies:
+        x0, x1 = b["outline"][0], b["outline"][1]
+        colour = _BODY_COLOUR[b["kind"]]
+        if b["name"] not in index:
+            ax.plot([x0, x1], [0.0, 0.0], ls="--", color=colour, lw=1.5)
+            continue
+        iy, ip, _ = index[b["name"]]
+        y = q[iy] if iy >= 0 else 0.0
+        psi = q[ip] if ip >= 0 else 0.0
+        xs = np.linspace(x0, x1, 2)
+        for j, phase in enumerate((0.0, 0.5 * np.pi, np.pi, 1.5 * np.pi)):
+            rot = np.exp(1j * phase)
+            shape = (y * rot).real + (psi * rot).real * (xs - b["x"])
+            ax.plot(xs, scale * shape, color=colour, lw=2.0 if j == 0 else 1.0,
+                    alpha=1.0 - 0.2 * j)  # fmt: skip
+        lines.append(f"{b['name']}: y {abs(y):.2f} at {np.degrees(np.angle(y)):+.0f} deg, "
+                     f"a psi {a * abs(psi):.2f} at {np.degrees(np.angle(psi)):+.0f} deg")
+    ax.axhline(0.0, color="0.8", lw=0.8, zorder=0)
+    ax.set_xlim(x_lo, x_hi)
+    ax.set_xlabel("x (m), + forward")
+    ax.set_ylabel(f"lateral shape (largest = {scale:g})")
+    ax.set_title(f"{vehicle.name}: hunting mode at {speed_kmh:.1f} km/h, "
+                 f"{abs(lam.imag) / (2 * np.pi):.2f} Hz, Re = {lam.real:.2e} 1/s\n"
+                 "(phases 0, 90, 180, 270 deg: darkest first)", fontsize=10)  # fmt: skip
+    ax.text(1.01, 1.0, "\n".join(lines), transform=ax.transAxes, va="top", fontsize=7,
+            family="monospace")  # fmt: skip
+    return fig
+
+
+def plot_hunting_mode(vehicle: Any, path: str | os.PathLike[str],
+                      speed_kmh: float | None = None) -> Path:  # fmt: skip
+    """Save :func:`hunting_mode_figure` to ``path``."""
+    return save_figure(hunting_mode_figure(vehicle, speed_kmh), path)
