@@ -422,3 +422,16 @@ def test_expression_difference_cancels_shared_terms():
     for bad in ("os.system", "a[0]", "'x'", "lambda: 1", "a if b else c", "a < b", "f(a)"):
         with pytest.raises(ExpressionError):
             Expression(bad)
+
+
+def test_study_design_on_a_layouts_own_parameters():
+    """Sweeps and ties check names and values against the vehicle's own table."""
+    from railhunt.studies.design import build_design
+
+    v = Vehicle.shipped("cooperrider_bogie")
+    points = build_design(v, {"k4": [1e5, 2e5]}, ties={"k5": "k4"})
+    assert [p.values for p in points] == [{"k4": 1e5, "k5": 1e5}, {"k4": 2e5, "k5": 2e5}]
+    with pytest.raises(ValueError, match="did you mean 'k4'"):
+        build_design(v, {"k44": [1.0]})
+    with pytest.raises(ValueError, match="unknown vehicle parameter 'C_d1'"):
+        build_design(v, {"C_d1": [1.0]})
