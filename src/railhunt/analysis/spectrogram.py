@@ -265,17 +265,3 @@ def dominant_bands(
             start = k
     return bands
 
-
-def plot_spectrogram(
-    spec: Spectrogram, path: str | os.PathLike[str], title: str = "", unit: str = "",
-    bands: list[Band] | None = None, fmax: float | None = None, *, full_range: bool = False,
-) -> Path:  # fmt: skip
-    """Draw the STFT amplitude map to a file: :func:`railhunt.plots.plot_spectrogram`.
-
-    Kept here for existing callers; the figure lives with the others in
-    :mod:`railhunt.plots.spectrogram` (viridis, 0-20 Hz by default, a legend for the
-    dominant bands).
-    """
-    from railhunt.plots.spectrogram import plot_spectrogram as plot
-
-    return plot(spec, path, title, unit, bands, fmax, full_range=full_range)

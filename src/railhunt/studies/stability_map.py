@@ -199,8 +199,8 @@ def _describe(vehicle: Vehicle, radii: list[float], cant: float,
               excitation: object, creep_law: str,
               param_cols: list[str]) -> dict[str, Any]:  # fmt: skip
     """The study description (sidecar); its fingerprint decides whether a file resumes."""
-    from railhunt import __version__
     from railhunt._cache import source_hash
+    from railhunt._version import __version__
     from railhunt.provenance import provenance, vehicle_block
 
     meta: dict[str, Any] = {

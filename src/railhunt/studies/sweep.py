@@ -292,8 +292,8 @@ def _describe(vehicle: Vehicle, parameters: Mapping[str, object], outputs: tuple
     contact description (not its name), the design and its points' resolved options, and
     only the options the chosen outputs use.
     """
-    from railhunt import __version__
     from railhunt._cache import source_hash
+    from railhunt._version import __version__
     from railhunt.provenance import provenance, vehicle_block
 
     names = list(parameters)
