@@ -16,6 +16,7 @@ from typing import Any
 import click
 
 from railhunt.cli.errors import CliError, user_input
+from railhunt.cli.files import OutputPath
 from railhunt.cli.options import check_outputs
 from railhunt.cli.output import announce
 from railhunt.cli.rules import Excludes, Requires
@@ -86,8 +87,11 @@ def check_study_outputs(out: Path | None, resume: bool, overwrite: bool,
 
     ``out`` may exist with ``--resume`` (it is continued) or ``--overwrite`` (replaced);
     the other files follow the overwrite policy of :func:`railhunt.cli.options.check_outputs`.
+    The study's description ``FILE.sweep.json`` (and a Parquet file's journal) go with
+    ``out``: one left from an earlier run counts as ``out`` existing.
     """
     from railhunt.studies.store import journal_path
+    from railhunt.studies.store import sidecar_path as study_sidecar
 
     check_outputs(overwrite=overwrite, **files)
     if out is None:
@@ -95,11 +99,21 @@ def check_study_outputs(out: Path | None, resume: bool, overwrite: bool,
     for option, path in files.items():
         if path is not None and path.resolve() == out.resolve():
             raise CliError(f"--out and --{option} both name {out}: give each its own file")
-    exists = out.exists() or journal_path(out).exists()
-    if exists and not (resume or overwrite):
-        raise CliError(f"--out {out} exists: continue it with --resume, replace it with "
-                       "--overwrite, or choose another file")  # fmt: skip
-    check_outputs(overwrite=True, out=out)
+    companions = [p for p in (journal_path(out), study_sidecar(out)) if p != out]
+    for option, path in files.items():
+        if path is not None and path.resolve() in [p.resolve() for p in companions]:
+            raise CliError(f"--{option} {path} is the study file of --out {out}: choose "
+                           "another file")  # fmt: skip
+    if not (resume or overwrite):
+        if out.exists():
+            raise CliError(f"--out {out} exists: continue it with --resume, replace it with "
+                           "--overwrite, or choose another file")  # fmt: skip
+        left = [p for p in companions if p.exists()]
+        if left:
+            raise CliError(f"--out {out}: {left[0]} of an earlier study exists: continue it "
+                           "with --resume, replace it with --overwrite, or choose another "
+                           "file")  # fmt: skip
+    check_outputs(overwrite=True, out=out, **{f"out {out}: its study file": companions[-1]})
 
 
 def study_options(out_required: bool = True,
@@ -125,7 +139,7 @@ def study_options(out_required: bool = True,
                             help="Replace FILE (and any other output file) if it exists.")(func)
         func = click.option("--resume", is_flag=True,
                             help="Continue FILE: compute only its missing points.")(func)
-        return click.option("--out", "out", type=click.Path(dir_okay=False, path_type=Path),
+        return click.option("--out", "out", type=OutputPath(),
                             required=out_required, metavar="FILE", help=out_help)(func)
 
     return decorate

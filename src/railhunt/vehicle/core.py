@@ -163,20 +163,31 @@ class Vehicle(VehicleFields):
 
     # -- output -------------------------------------------------------------------------
 
-    def to_toml(self, path: str | os.PathLike[str]) -> Path:
+    def to_toml(self, path: str | os.PathLike[str], *, overwrite: bool = False) -> Path:
         """Write the vehicle as a complete TOML vehicle file (read back by :func:`load_vehicle`).
 
         Parameters
         ----------
         path : str or os.PathLike
-            Destination file (overwritten).
+            Destination file.
+        overwrite : bool
+            Replace ``path`` if it exists; without it an existing file is an error (the
+            command line's overwrite policy).
 
         Returns
         -------
         pathlib.Path
             The path written.
+
+        Raises
+        ------
+        FileExistsError
+            ``path`` exists and ``overwrite`` is False.
         """
         path = Path(path)
+        if path.exists() and not overwrite:
+            raise FileExistsError(f"{path} exists: give overwrite=True to replace it, or "
+                                  "choose another file")  # fmt: skip
         path.write_text(self._toml_text(), encoding="utf-8")
         return path
 

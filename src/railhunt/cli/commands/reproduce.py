@@ -10,6 +10,7 @@ from typing import Any
 import click
 
 from railhunt.cli.errors import CliError
+from railhunt.cli.files import OutputPath
 from railhunt.cli.options import check_output_folder, overwrite_option
 from railhunt.cli.output import show_progress, spinner, stdout_console
 from railhunt.cli.rules import Excludes, command
@@ -96,7 +97,7 @@ def _difference_style(agrees: bool | None) -> str:
 @command("reproduce", rules=RULES,
          short_help="Recompute the paper's Figs. 6-8, 10-13 into an HTML report.")
 @click.option("--out", "out_dir", required=True, metavar="DIR",
-              type=click.Path(file_okay=False, path_type=Path),
+              type=OutputPath(folder=True),
               help="Folder for report.html, headline.json and the figures (created if "
               "missing; files of an earlier run are replaced only with --overwrite).")
 @click.option("--quick", is_flag=True,
