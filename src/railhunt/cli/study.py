@@ -41,28 +41,55 @@ STUDY_RULES = (
 )  # fmt: skip
 
 
+#: Where ``--wait-for-workers`` is kept between parsing and :func:`scheduler_client`.
+_WAIT_KEY = "railhunt.wait_for_workers"
+
+
+def _keep_wait(ctx: click.Context, param: click.Parameter, value: bool) -> bool:
+    ctx.meta[_WAIT_KEY] = value
+    return value
+
+
 def connect_timeout_option(default: float = 30.0) -> Decorator:
-    """``--connect-timeout S``: how long to try to reach ``--scheduler``, in (0, 3600] s."""
+    """``--connect-timeout S``: how long to try to reach ``--scheduler``, in (0, 3600] s;
+    with it ``--wait-for-workers`` (read by :func:`scheduler_client`, not passed on)."""
     from railhunt.cli.options import number_range
 
-    return click.option("--connect-timeout", "connect_timeout", type=float, default=default,
-                        show_default=True, metavar="S",
-                        callback=number_range("s", 0.0, 3600.0),
-                        help="How long to try to reach --scheduler (s); a refused port "
-                        "fails at once.")  # fmt: skip
+    timeout = click.option("--connect-timeout", "connect_timeout", type=float,
+                           default=default, show_default=True, metavar="S",
+                           callback=number_range("s", 0.0, 3600.0),
+                           help="How long to try to reach --scheduler and read its "
+                           "handshake (s); a refused port fails at once.")  # fmt: skip
+    wait = click.option("--wait-for-workers", is_flag=True, expose_value=False,
+                        callback=_keep_wait,
+                        help="Wait for the --scheduler's first worker as long as it takes "
+                        "(without it, a scheduler with no workers is an error after "
+                        "5 s).")  # fmt: skip
+
+    def decorate(func: Callable[..., Any]) -> Callable[..., Any]:
+        return timeout(wait(func))
+
+    return decorate
 
 
 @contextlib.contextmanager
 def scheduler_client(scheduler: str | None, connect_timeout: float) -> Iterator[Any]:
     """A Dask client joined to ``--scheduler`` (None without one), closed on exit; a
     scheduler that cannot be joined is one ``railhunt: error:`` line naming it."""
+    ctx = click.get_current_context(silent=True)
+    wait = bool(ctx.meta.get(_WAIT_KEY)) if ctx is not None else False
     if scheduler is None:
+        if wait:
+            raise CliError("--wait-for-workers is about --scheduler: give --scheduler ADDRESS")
         yield None
         return
     from railhunt.studies.execute import SchedulerError, join_scheduler
 
+    if wait:
+        click.echo(f"railhunt: waiting for the first worker of {scheduler} (Ctrl-C to stop)",
+                   err=True)  # fmt: skip
     try:
-        client = join_scheduler(scheduler, connect_timeout)
+        client = join_scheduler(scheduler, connect_timeout, wait_for_workers=wait)
     except SchedulerError as exc:
         raise CliError(f"--scheduler {scheduler}: {exc}") from None
     try:
@@ -189,9 +216,15 @@ def announce_study(vehicle: Any, points: list[Any], outputs: tuple[str, ...],
 
 
 def check_workers_option(workers: int | None) -> None:
-    """``--workers N`` must be in [1, 1024] (or left out: all cores)."""
+    """``--workers N`` must be in [1, 1024] (or left out: all cores); more than the cores
+    are capped at them, with a note on stderr saying so and why."""
     if workers is not None and not 1 <= workers <= 1024:
         raise CliError(f"--workers {workers} is invalid: must be in [1, 1024]")
+    from railhunt.studies.execute import capped_workers
+
+    why = capped_workers(workers)
+    if why is not None:
+        click.echo(f"railhunt: note: --workers {why}", err=True)
 
 
 @contextlib.contextmanager

@@ -14,7 +14,12 @@ from railhunt.cli.files import OutputPath
 from railhunt.cli.options import check_output_folder, overwrite_option
 from railhunt.cli.output import show_progress, spinner, stdout_console
 from railhunt.cli.rules import Excludes, command
-from railhunt.cli.study import CONNECT_RULE, connect_timeout_option, scheduler_client
+from railhunt.cli.study import (
+    CONNECT_RULE,
+    check_workers_option,
+    connect_timeout_option,
+    scheduler_client,
+)
 
 RULES = (Excludes("--scheduler", "--workers", "give either {a} or {b}, not both"),
          CONNECT_RULE)
@@ -133,6 +138,7 @@ def reproduce_command(out_dir: Path, quick: bool, scheduler: str | None,
     from railhunt.studies.reproduce import OUTPUT_FILES
 
     check_output_folder("--out", out_dir, OUTPUT_FILES, overwrite)
+    check_workers_option(workers)
     try:
         out_dir.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
