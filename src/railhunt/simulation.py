@@ -11,6 +11,7 @@ from typing import Any
 
 import numpy as np
 
+from railhunt.arguments import check_curve
 from railhunt.channels import CHANNEL_UNITS, derived_channels
 from railhunt.curve import Curve
 from railhunt.kernel import integrators
@@ -57,7 +58,8 @@ class SimulationResult(ResultDisplay):
         Forward speed (m/s).
     status : str
         ``"ok"``, ``"derailed"`` (a wheelset's lateral displacement exceeded the limit),
-        ``"diverged"`` (non-finite state) or ``"step-failed"``.
+        ``"diverged"`` (non-finite state), ``"step-failed"`` or ``"step-limit"`` (the
+        adaptive method used up its step budget before the end: the message says so).
     message : str
         Human-readable description of how the run ended.
     damper_velocity : numpy.ndarray
@@ -358,7 +360,9 @@ def integrate_model(
 
 def _check_positive(name: str, value: float, unit: str, low: float = 0.0,
                     high: float = math.inf) -> float:
-    value = float(value)
+    from railhunt.arguments import check_real
+
+    value = check_real(name, value, unit)
     if not (math.isfinite(value) and low < value <= high):
         raise ValueError(
             f"{name} = {value!r} {unit} is invalid: must be finite and in ({low}, {high}] {unit}"
@@ -438,6 +442,7 @@ def simulate(
     if method not in METHODS:
         raise ValueError(f"method = {method!r} is invalid: must be one of {', '.join(METHODS)}")
     check_excitation(excitation, (SingleDefect, InitialDisplacement, SampledTrack))
+    check_curve(curve)
     if model is None:
         model = Model(vehicle, creep_law=creep_law)
     x_init = _initial_state(model, excitation, x0)

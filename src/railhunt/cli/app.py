@@ -13,7 +13,7 @@ from typing import Any
 import click
 
 from railhunt.cli.commands import COMMANDS
-from railhunt.cli.errors import PROG, one_line_usage_errors
+from railhunt.cli.errors import DEBUG_ENV, DEBUG_KEY, PROG, no_tracebacks, one_line_usage_errors
 
 __all__ = ["main"]
 
@@ -75,7 +75,7 @@ class Group(click.Group):
             return super().make_context(info_name, args, parent, **extra)
 
     def invoke(self, ctx: click.Context) -> Any:
-        with one_line_usage_errors():
+        with no_tracebacks(ctx), one_line_usage_errors():
             return super().invoke(ctx)
 
     def list_commands(self, ctx: click.Context) -> list[str]:
@@ -99,6 +99,9 @@ class Group(click.Group):
     context_settings={"help_option_names": ["-h", "--help"]},
 )
 @click.version_option(package_name="railhunt", prog_name=PROG)
+@click.option("--debug", is_flag=True, expose_value=False, is_eager=True,
+              callback=lambda ctx, param, value: ctx.meta.__setitem__(DEBUG_KEY, value),
+              help=f"Show the traceback of an unexpected error (or set {DEBUG_ENV}=1).")
 def main() -> None:
     """Entry point of the railhunt command (help text: ``_INTRO`` and ``_NOTES``)."""
 

@@ -13,7 +13,8 @@ from typing import Any
 
 import click
 
-__all__ = ["PROG", "CliError", "one_line_usage_errors", "user_input"]
+__all__ = ["DEBUG_ENV", "PROG", "CliError", "no_tracebacks", "one_line_usage_errors",
+           "user_input"]
 
 #: Name of the program in messages and usage lines.
 PROG = "railhunt"
@@ -46,6 +47,47 @@ def one_line_usage_errors() -> Iterator[None]:
         if exc.ctx is not None:
             message += f" (see '{exc.ctx.command_path} --help')"
         raise CliError(message) from None
+
+
+#: Set to 1 (or give ``railhunt --debug``) to see the traceback of an unexpected error.
+DEBUG_ENV = "RAILHUNT_DEBUG"
+#: Where ``--debug`` is kept (``click.Context.meta``).
+DEBUG_KEY = "railhunt.debug"
+
+
+def _debugging(ctx: click.Context | None) -> bool:
+    import os
+
+    flag = os.environ.get(DEBUG_ENV, "").strip().lower() not in ("", "0", "no", "false")
+    return flag or bool(ctx is not None and ctx.meta.get(DEBUG_KEY))
+
+
+@contextlib.contextmanager
+def no_tracebacks(ctx: click.Context | None = None) -> Iterator[None]:
+    """The command line's safety net: no traceback reaches a user.
+
+    An invalid input the command did not catch itself (a library ``ValueError``, a
+    ``TypeError`` naming an argument, a curve without a steady state) becomes one
+    ``railhunt: error:`` line (exit status 2); any other exception one line naming it, with
+    the hint to rerun with ``RAILHUNT_DEBUG=1`` or ``--debug`` for the traceback (exit
+    status 1). With either of those the exception propagates unchanged.
+    """
+    try:
+        yield
+    except (click.ClickException, click.exceptions.Exit, click.Abort):
+        raise
+    except Exception as exc:
+        if _debugging(ctx):
+            raise
+        from railhunt.analysis.curving import CurvingError
+
+        text = " ".join(str(exc).split()) or type(exc).__name__
+        if isinstance(exc, ValueError | TypeError | CurvingError):
+            raise CliError(text) from None
+        click.echo(f"{PROG}: error: unexpected {type(exc).__name__}: {text[:300]} (run again "
+                   f"with {DEBUG_ENV}=1 or 'railhunt --debug ...' to see where; please "
+                   "report it)", err=True)  # fmt: skip
+        raise SystemExit(1) from None
 
 
 @contextlib.contextmanager

@@ -252,7 +252,15 @@ def running_study(out: Path | None, points: str = "points") -> Iterator[None]:
 
 
 def report_lost(result: Any, points: str = "points") -> None:
-    """Exit with status 1 when points of the study were lost (they can be resumed)."""
+    """Exit with status 1 when points of the study were lost (they can be resumed), or
+    when every point failed (the study computed nothing: its first error is shown)."""
+    from railhunt.studies.store import STATUS_FAILED
+
+    failed = [row for row in result.rows if row.get("status") == STATUS_FAILED]
+    if result.rows and len(failed) == len(result.rows) and not result.lost:
+        click.echo(f"railhunt: error: every one of the {len(failed)} {points} failed; the "
+                   f"first: {failed[0].get('message', '')}", err=True)  # fmt: skip
+        raise SystemExit(1)
     if result.lost:
         how = ("run the same command with --resume to compute them" if result.path is not None
                else "run the command again")  # fmt: skip
