@@ -148,5 +148,5 @@ def _warn_spikes(ys: np.ndarray, zs: np.ndarray, order: np.ndarray, where: str) 
         f"profile file {where!r}: point {point} (y = {ys[k + 1] * 1e3:.4g} mm) stands "
         f"{off[k] * 1e3:+.3g} mm off both its neighbours{more}: a measuring spike? "
         "It is kept; remove it from the file if it is one",
-        stacklevel=4,
+        stacklevel=5,
     )
