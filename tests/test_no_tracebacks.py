@@ -6,7 +6,6 @@ from __future__ import annotations
 import pytest
 
 import railhunt
-from railhunt.arguments import ArgumentTypeError
 from test_cli import assert_input_error, run
 
 PAPER = railhunt.Vehicle.paper2019()
@@ -84,6 +83,8 @@ def test_a_study_whose_every_point_failed_exits_non_zero(tmp_path, monkeypatch):
 def test_a_wrong_type_is_a_type_error_naming_the_argument(call, argument):
     with pytest.raises(TypeError) as info:
         call()
+    from railhunt.arguments import ArgumentTypeError
+
     assert isinstance(info.value, ArgumentTypeError)
     assert str(info.value).startswith(argument)
 

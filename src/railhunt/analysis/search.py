@@ -25,8 +25,8 @@ def check_search(start_kmh: float, step_kmh: float, tol_kmh: float, min_kmh: flo
             raise ValueError(f"{name} = {value!r} km/h is invalid: must be finite and > 0")
     if not (min_kmh <= start_kmh <= max_kmh):
         raise ValueError(
-            f"start_kmh = {start_kmh} km/h is invalid: must lie in [min_kmh, max_kmh] = "
-            f"[{min_kmh}, {max_kmh}] km/h"
+            f"start_kmh = {start_kmh} km/h is invalid: must lie in [{min_kmh:g}, "
+            f"{max_kmh:g}] km/h, the range of the search"
         )
     if tol_kmh > step_kmh:
         raise ValueError(f"tol_kmh = {tol_kmh} km/h is invalid: must be <= step_kmh = {step_kmh}")

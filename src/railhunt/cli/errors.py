@@ -13,7 +13,7 @@ from typing import Any
 
 import click
 
-__all__ = ["DEBUG_ENV", "PROG", "CliError", "no_tracebacks", "one_line_usage_errors",
+__all__ = ["DEBUG_ENV", "PROG", "CliError", "flag_names", "no_tracebacks", "one_line_usage_errors",
            "user_input"]
 
 #: Name of the program in messages and usage lines.
@@ -47,6 +47,47 @@ def one_line_usage_errors() -> Iterator[None]:
         if exc.ctx is not None:
             message += f" (see '{exc.ctx.command_path} --help')"
         raise CliError(message) from None
+
+
+#: Unit suffixes the library adds to an argument's name (``start_kmh``) that a flag of the
+#: same quantity leaves out (``--start``).
+_UNIT_SUFFIXES = ("", "_kmh", "_mm", "_m", "_s", "_hz")
+
+
+def _flag_names(ctx: click.Context | None) -> dict[str, str]:
+    """Library argument names -> the flag of the running command that sets them: a
+    flag's destination or its own name, with or without a unit suffix."""
+    if ctx is None:
+        return {}
+    names: dict[str, str] = {}
+    for param in ctx.command.params:
+        flags = [o for o in getattr(param, "opts", []) if o.startswith("--")]
+        if not flags or param.name is None:
+            continue
+        flag = flags[0]
+        for base in {param.name, flag[2:].replace("-", "_")}:
+            for suffix in _UNIT_SUFFIXES:
+                names.setdefault(base + suffix, flag)
+    return names
+
+
+def flag_names(message: str, ctx: click.Context | None = None) -> str:
+    """``message`` with the library's argument names replaced by the flags that set them:
+    ``start_kmh = 5.0 km/h is invalid`` becomes ``--start 5.0 km/h is invalid``."""
+    import re
+
+    ctx = ctx or click.get_current_context(silent=True)
+    names = _flag_names(ctx)
+    if not names:
+        return message
+
+    def flag(match: re.Match[str]) -> str:
+        name, assigned = match.group(1), match.group(2)
+        if name not in names or not (assigned or "_" in name):  # prose words stay
+            return match.group(0)
+        return f"{names[name]} " if assigned else names[name]
+
+    return re.sub(r"(?<![\w-])([a-z][a-z0-9_]*)(?![\w(])( = )?", flag, message)
 
 
 #: Set to 1 (or give ``railhunt --debug``) to see the traceback of an unexpected error.
@@ -83,7 +124,7 @@ def no_tracebacks(ctx: click.Context | None = None) -> Iterator[None]:
 
         text = " ".join(str(exc).split()) or type(exc).__name__
         if isinstance(exc, ValueError | TypeError | CurvingError):
-            raise CliError(text) from None
+            raise CliError(flag_names(text)) from None
         click.echo(f"{PROG}: error: unexpected {type(exc).__name__}: {text[:300]} (run again "
                    f"with {DEBUG_ENV}=1 or 'railhunt --debug ...' to see where; please "
                    "report it)", err=True)  # fmt: skip
@@ -105,4 +146,4 @@ def user_input(prefix: str = "") -> Iterator[None]:
         where = f"{exc.filename}: " if exc.filename else ""
         raise CliError(f"{prefix}{where}{exc.strerror or exc}") from None
     except ValueError as exc:
-        raise CliError(f"{prefix}{exc}") from None
+        raise CliError(f"{prefix}{flag_names(str(exc))}") from None

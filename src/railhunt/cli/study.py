@@ -176,8 +176,14 @@ def study_options(out_required: bool = True,
 STEP_PARAMETERS = frozenset({"C_d1", "C_d2", "K_d"})
 
 #: Simulated time (s) of one point per study output: the nonlinear critical-speed search
-#: (~8 trials), the hunting-frequency run and shooting; the linear outputs cost no steps.
-OUTPUT_SECONDS = {"critical_speed": 120.0, "hunting_frequency": 60.0}
+#: (~8 trials), the hunting-frequency run and shooting; the linear outputs cost no steps
+#: (fitted with ``benchmarks/workload.py``, see :mod:`railhunt.workload`).
+OUTPUT_SECONDS = {"critical_speed": 120.0, "hunting_frequency": 16.0}
+
+
+#: Points of a study whose own step is computed for its estimate (evenly spread over the
+#: study; the others are counted at the mean rate of these).
+STEP_SAMPLE = 64
 
 
 def announce_study(vehicle: Any, points: list[Any], outputs: tuple[str, ...],
@@ -185,10 +191,10 @@ def announce_study(vehicle: Any, points: list[Any], outputs: tuple[str, ...],
                    what: str = "points") -> None:  # fmt: skip
     """Announce a study of more than a minute before it starts (:mod:`railhunt.workload`).
 
-    The step is the smallest automatic step of the nominal vehicle and of the study's
-    points at the ends of each yaw damper parameter's range (where the step is set); a
-    point whose step is refused (a stiff damper) is left out: it fails alone, with the
-    reason in its row.
+    Each point runs at its own automatic step, so the steps are counted point by point
+    (at most :data:`STEP_SAMPLE` of them, evenly spread, stand for the others) when the
+    study varies a parameter that sets the step; a point whose step is refused (a stiff
+    damper) is left out: it fails alone, with the reason in its row.
     """
     from railhunt import Model
     from railhunt.simulation import StiffDamperError, auto_step
@@ -199,19 +205,19 @@ def announce_study(vehicle: Any, points: list[Any], outputs: tuple[str, ...],
     per_point = sum(OUTPUT_SECONDS.get(o, 0.0) for o in outputs)
     if not points or per_point == 0.0:
         return
-    names = {n for p in points for n in p.values if n in STEP_PARAMETERS}
-    extremes = [min(points, key=lambda p, n=n: p.values[n]) for n in names]
-    extremes += [max(points, key=lambda p, n=n: p.values[n]) for n in names]
-    steps = []
-    for values in [{}] + [p.values for p in extremes]:
+    varied = any(n in STEP_PARAMETERS for p in points for n in p.values)
+    chosen = points[:: max(1, len(points) // STEP_SAMPLE)][:STEP_SAMPLE] if varied else []
+    rates = []
+    for values in [{}] + [p.values for p in chosen]:
         try:
-            steps.append(auto_step(Model(vehicle.replace(**values)), kmh_to_ms(300.0)))
+            rates.append(1.0 / auto_step(Model(vehicle.replace(**values)), kmh_to_ms(300.0)))
         except (StiffDamperError, ValueError):
             continue
-    if not steps:
+    if not rates:
         return
+    rate = sum(rates[1:]) / len(rates[1:]) if len(rates) > 1 else rates[0]
     n = 1 if scheduler is not None else check_workers(workers)
-    announce(workload(len(points) * per_point, min(steps),
+    announce(workload(len(points) * per_point, 1.0 / rate,
                       f"{len(points)} {what} of ~{per_point:.0f} s simulated", workers=n))
 
 

@@ -279,7 +279,7 @@ def suggest(name: str) -> tuple[str, ...]:
     tuple of str
         Up to a few parameter or derived names; may be empty.
     """
-    known = [*PARAMETERS, *DERIVED]
+    known = [k for k in (*PARAMETERS, *DERIVED) if k != name]
     exact_case = [k for k in known if k.lower() == name.lower()]
     close = difflib.get_close_matches(name, known, n=3, cutoff=0.6)
     return tuple(dict.fromkeys([*exact_case, *close]))

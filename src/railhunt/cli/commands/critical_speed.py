@@ -255,8 +255,18 @@ def _above_linear(result: Any, linear: Any) -> bool:
 
 def _announce_search(vehicle: Any, excitation: Any, start_kmh: float, step_kmh: float,
                      tol_kmh: float, dt: float | None) -> None:  # fmt: skip
-    """Refuse a stiff damper's step, and announce a search of more than a minute."""
+    """Refuse invalid search settings and a stiff damper's step (before any estimate),
+    and announce a search of more than a minute."""
+    import inspect
     import math
+
+    from railhunt.analysis.critical import critical_speed
+    from railhunt.analysis.search import check_search
+
+    bounds = inspect.signature(critical_speed).parameters
+    with user_input():
+        check_search(start_kmh, step_kmh, tol_kmh, bounds["min_kmh"].default,
+                     bounds["max_kmh"].default)  # fmt: skip
 
     from railhunt import Model
     from railhunt.analysis.critical import Judgement
