@@ -231,6 +231,29 @@ def auto_step(model: Model, speed: float, safety: float = 0.6, dt_max: float = 1
     return dt
 
 
+def step_cause(model: Model, speed: float, dt_max: float = 1e-3) -> str:
+    """What sets the automatic step of ``model`` at ``speed`` (m/s), in words naming the
+    parameters: a yaw damper stage's relaxation ``K_d / C_d1`` (or ``C_d2``), the model's
+    fastest mode, or the step's cap of ``dt_max`` s."""
+    rate = float(np.max(np.abs(np.linalg.eigvals(model.jacobian(speed)))))
+    d = model.dpar
+    k_d = float(np.max(d[:, DamperParam.K_D]))
+    c_1 = float(np.min(d[:, DamperParam.C_D1]))
+    c_2 = float(np.min(d[:, DamperParam.C_D2]))
+    rate_1, rate_2 = k_d / c_1, k_d / c_2
+    top = max(rate, rate_1, rate_2)
+    if 0.6 / top >= dt_max:
+        return f"the step is its cap of {dt_max:g} s: the run is long, not stiff"
+    if max(rate_1, rate_2) < 0.5 * rate:  # the damper's relaxation is one of the modes
+        return (f"the step of {0.6 / top:.2g} s is set by the model's fastest mode "
+                f"({rate:.3g} 1/s, the Jacobian's largest eigenvalue: a stiff spring or a "
+                "light body)")  # fmt: skip
+    name, c = ("C_d1", c_1) if rate_1 >= rate_2 else ("C_d2", c_2)
+    return (f"the step of {0.6 / top:.2g} s is set by the yaw damper's relaxation K_d/{name} "
+            f"= {k_d:.4g} N/m / {c:.4g} N*s/m = {top:.3g} 1/s; a larger {name} or a smaller "
+            "K_d shortens the run")
+
+
 def stiff_damper_message(model: Model, rest: float, dt: float, rate_1: float, rate_2: float,
                          safety: float) -> str:  # fmt: skip
     """Why :func:`auto_step` refuses: the stage, its rate, the step and the way out."""

@@ -207,18 +207,21 @@ def announce_study(vehicle: Any, points: list[Any], outputs: tuple[str, ...],
         return
     varied = any(n in STEP_PARAMETERS for p in points for n in p.values)
     chosen = points[:: max(1, len(points) // STEP_SAMPLE)][:STEP_SAMPLE] if varied else []
-    rates = []
+    rates, stiffest = [], (0.0, vehicle)
     for values in [{}] + [p.values for p in chosen]:
         try:
-            rates.append(1.0 / auto_step(Model(vehicle.replace(**values)), kmh_to_ms(300.0)))
+            v = vehicle.replace(**values)
+            rates.append(1.0 / auto_step(Model(v), kmh_to_ms(300.0)))
         except (StiffDamperError, ValueError):
             continue
+        stiffest = max(stiffest, (rates[-1], v), key=lambda r: r[0])
     if not rates:
         return
     rate = sum(rates[1:]) / len(rates[1:]) if len(rates) > 1 else rates[0]
     n = 1 if scheduler is not None else check_workers(workers)
     announce(workload(len(points) * per_point, 1.0 / rate,
-                      f"{len(points)} {what} of ~{per_point:.0f} s simulated", workers=n))
+                      f"{len(points)} {what} of ~{per_point:.0f} s simulated", workers=n),
+             stiffest[1], kmh_to_ms(300.0))  # fmt: skip
 
 
 def check_workers_option(workers: int | None) -> None:

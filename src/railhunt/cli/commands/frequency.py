@@ -62,7 +62,8 @@ def frequency_command(from_kmh: float, to_kmh: float, step_kmh: float, initial_m
     model = Model(vehicle)
     with user_input("--set/--vehicle: "):
         dt = auto_step(model, kmh_to_ms(to_kmh))
-    announce(workload(n * SIMULATED_SECONDS["frequency speed"], dt, f"{n} speeds"))
+    announce(workload(n * SIMULATED_SECONDS["frequency speed"], dt, f"{n} speeds"), vehicle,
+             kmh_to_ms(to_kmh))  # fmt: skip
     speeds = from_kmh + step_kmh * np.arange(n)
     results = []
     with spinner("simulating speeds"):
