@@ -87,10 +87,11 @@ class UnknownParameterError(ParameterError):
         Close known names (``difflib``), best first; may be empty.
     """
 
-    def __init__(self, parameter: str, value: object = None) -> None:
+    def __init__(self, parameter: str, value: object = None,
+                 known: tuple[str, ...] | None = None) -> None:  # fmt: skip
         from railhunt.vehicle.parameters import DERIVED, PARAMETERS, suggest
 
-        suggestions = suggest(parameter)
+        suggestions = suggest(parameter, known)
         if parameter in DERIVED:  # a derived quantity is known, just not settable
             spec = DERIVED[parameter]
             super().__init__(parameter, value, "a parameter, not a derived quantity", None,
@@ -103,8 +104,10 @@ class UnknownParameterError(ParameterError):
             quoted = [repr(s) for s in suggestions]
             options = quoted[0] if len(quoted) == 1 else f"{', '.join(quoted[:-1])} or {quoted[-1]}"
             hint = f"did you mean {options}?"
-        else:
+        elif known is None or set(known) == set(PARAMETERS):
             hint = f"see railhunt.vehicle.PARAMETERS for the {len(PARAMETERS)} known names"
+        else:
+            hint = f"the vehicle's {len(known)} parameters are: {', '.join(known)}"
         super().__init__(
             parameter,
             value,
