@@ -90,7 +90,7 @@ def root_locus_figure(
     crossings = _zero_crossings(speeds, zeta, freq_h)
     for k, (v, f, rising) in enumerate(crossings):
         word = "unstable above" if rising else "stable again above"
-        ax_r.annotate(f"{v:.0f} km/h: {word}", (0.0, f), xytext=(8, 10 + 14 * (k % 2)),
+        ax_r.annotate(f"{v:.0f} km/h: {word}", (0.0, f), xytext=(12, -16 - 14 * (k % 2)),
                       textcoords="offset points", fontsize="x-small", color="k",
                       arrowprops={"arrowstyle": "-", "color": "0.4", "lw": 0.8})  # fmt: skip
 
@@ -134,7 +134,7 @@ def root_locus_figure(
     ax_z.axhline(0.0, color="k", lw=0.8)
     for v, _, rising in crossings:  # every zero crossing, the second one near 480 km/h too
         ax_z.plot(v, 0.0, "D", color="k" if rising else "tab:green", ms=6, zorder=3)
-        ax_z.annotate(f"{v:.0f} km/h", (v, 0.0), xytext=(4, -14 if rising else 8),
+        ax_z.annotate(f"{v:.0f} km/h", (v, 0.0), xytext=(6, 6),
                       textcoords="offset points", fontsize="x-small")  # fmt: skip
     if linear is not None and math.isfinite(linear.speed_kmh):
         ax_z.axvline(
