@@ -86,8 +86,7 @@ def _body_rows(text: str) -> list[str]:
 @pytest.mark.parametrize("args", [
     ["critical-speed", "--set", "C_d1=3000"],
     ["sweep", "C_d1", "--from", "1e5", "--to", "2e5", "K_d", "--from", "5e6", "--to", "1e7",
-     "--num", "2", "--design", "grid", "--tie", "C_d2=C_d1", "--workers", "1", "--outputs",
-     "linear_critical_speed,hunting_frequency", "--out", "OUT"],
+     "--num", "2", "--design", "grid", "--tie", "C_d2=C_d1", "--workers", "1", "--out", "OUT"],
 ])  # fmt: skip
 def test_tables_fit_in_80_columns(tmp_path, monkeypatch, args):
     monkeypatch.setenv("COLUMNS", "80")

@@ -47,7 +47,13 @@ parameters), so that a number can be traced.
 
 \b
 Long runs: a command whose estimated work exceeds a minute says so on stderr
-before it starts ('railhunt: note: this will take about ...').
+before it starts ('railhunt: note: this will take about ...'); the estimates
+fall within a factor of about 1.6 of the measured time on the reference machine
+(python benchmarks/workload.py). A run estimated at more than an hour is refused
+unless --yes is given, naming what sets its step.
+\b
+Errors: an unexpected error is one line too; RAILHUNT_DEBUG=1 or
+'railhunt --debug COMMAND' shows its traceback.
 
 \b
 Examples:
