@@ -146,4 +146,7 @@ def user_input(prefix: str = "") -> Iterator[None]:
         where = f"{exc.filename}: " if exc.filename else ""
         raise CliError(f"{prefix}{where}{exc.strerror or exc}") from None
     except ValueError as exc:
-        raise CliError(f"{prefix}{flag_names(str(exc))}") from None
+        text = flag_names(str(exc))
+        if prefix.strip().endswith(":") and text.startswith(prefix.strip()[:-1] + " "):
+            prefix = ""  # "--spectrum: --spectrum 'bad' is invalid" says it twice
+        raise CliError(f"{prefix}{text}") from None
