@@ -93,6 +93,10 @@ def _hopf_start(model: Model, hopf_kmh: float,
     return np.real(vec), 2 * math.pi / abs(lam.imag)
 
 
+#: ``y_w1(0)`` of the three small orbits that start the Hopf branch (m).
+SMALL_ORBIT_SEEDS = (5e-5, 1e-4, 2e-4)
+
+
 @dataclass
 class _Limits:
     lo: float
@@ -102,6 +106,7 @@ class _Limits:
     max_step_kmh: float
     max_step_amplitude: float
     min_amplitude: float = 0.0  # m: a branch whose amplitude falls below this has ended
+    max_ds: float = 50.0  # largest arclength step (scaled unknowns)
 
 
 class _Tracer:
@@ -132,17 +137,19 @@ class _Tracer:
 
     def trace(self, u0: np.ndarray, lin0: tuple, tangent: np.ndarray, ds: float,
               budget: int, limits: _Limits | None = None,
+              stop: Callable[[list[PeriodicOrbit]], str] | None = None,
               ) -> tuple[list[PeriodicOrbit], str, bool, bool]:  # fmt: skip
         """Follow the branch from ``u0`` along ``tangent``.
 
         Returns the new orbits, why it stopped, whether it stopped normally (False: Newton
         failed at the smallest step or the point budget ran out) and whether it left the
-        speed range downward (the branch goes on below the range).
+        speed range downward (the branch goes on below the range). ``stop(orbits)``,
+        called after each new orbit, ends the trace (normally) when it returns a reason.
         """
         lim, shoot, iy = limits or self.limits, self.shoot, self.iy
         orbits: list[PeriodicOrbit] = []
         u_prev, lin = u0, lin0
-        ds_min, ds_max = 1e-3, 50.0
+        ds_min, ds_max = 1e-3, lim.max_ds
         for _ in range(budget):
             jac = shoot.jacobian(u_prev, lin=lin)
             tangent = self.null_vector(jac, tangent)
@@ -189,6 +196,9 @@ class _Tracer:
             if orbit.amplitude < lim.min_amplitude:
                 return orbits, (f"came back to the equilibrium near {v_kmh:.1f} km/h (a second "
                                 "Hopf point)"), True, False  # fmt: skip
+            reason = stop(orbits) if stop is not None else ""
+            if reason:
+                return orbits, reason, True, False
         return orbits, f"used all its {budget} points (incomplete)", False, False
 
 
@@ -276,33 +286,9 @@ def bifurcation_diagram(
     shoot.set_period_hint(period0)
     x_hopf = np.zeros(N_STATE) if path is None else path.state(kmh_to_ms(hopf))
     tracer = _Tracer(shoot, limits, on_point)
-    iy = tracer.iy
 
     # 1. Three small orbits with y_w1(0) fixed (natural parameter), from the eigenvector.
-    seeds = (5e-5, 1e-4, 2e-4)
-    small: list[tuple[np.ndarray, PeriodicOrbit, tuple]] = []
-    u = shoot.pack(x_hopf + seeds[0] * shape, period0, kmh_to_ms(hopf))
-    for n, eps in enumerate(seeds):
-        target = (x_hopf[Y_W1] + eps) / STATE_SCALE[Y_W1]
-        if n >= 2:
-            u = small[-1][0] + (small[-1][0] - small[-2][0]) * (eps - seeds[n - 1]) / (
-                seeds[n - 1] - seeds[n - 2])  # fmt: skip
-        u = u.copy()
-        u[iy] = target
-
-        def fun(w: np.ndarray, target: float = target) -> np.ndarray:
-            return np.append(shoot.residual(w), w[iy] - target)
-
-        def jac_fun(w: np.ndarray, r: np.ndarray) -> np.ndarray:
-            row = np.zeros(w.size)
-            row[iy] = 1.0
-            return np.vstack([shoot.jacobian(w, r[:-1]), row])
-
-        u, norm, it, ok, _ = newton(fun, jac_fun, u, tol=1e-9, max_iter=20)
-        if not ok:
-            raise RuntimeError(f"no small limit cycle found near the Hopf point ({hopf:.1f} km/h)")
-        orbit, lin = tracer.solve(u, norm, it)
-        small.append((u, orbit, lin))
+    small = hopf_branch_start(shoot, tracer, x_hopf, shape, period0, hopf)
     a_small = np.array([o.amplitude for _, o, _ in small])
     v_small = np.array([o.speed_kmh for _, o, _ in small])
     hopf_from_orbits = float(np.polyfit(a_small, v_small, 2)[-1])
@@ -315,7 +301,7 @@ def bifurcation_diagram(
     # A branch that comes back below the smallest seeded amplitude has reached another Hopf
     # point (in a curve the equilibrium can lose and regain stability along the speed).
     hopf_limits = dataclasses.replace(limits, lo=min(lo, hopf - 10.0), hi=max(hi, hopf + 10.0),
-                                      min_amplitude=0.75 * seeds[-1])  # fmt: skip
+                                      min_amplitude=0.75 * SMALL_ORBIT_SEEDS[-1])  # fmt: skip
     more, msg, complete, below = tracer.trace(small[-1][0], small[-1][2], tangent / ds, ds,
                                               limits.max_points, hopf_limits)  # fmt: skip
     branches = [make_branch([o for _, o, _ in small] + more, "hopf", (hopf, period0))]
@@ -363,6 +349,43 @@ def bifurcation_diagram(
     return BifurcationDiagram(branches, hopf, hopf_from_orbits, linear.frequency_hz, lowest,
                               hopf_type, (lo, hi), complete, "; ".join(messages),
                               fold_below_range=below)  # fmt: skip
+
+
+def hopf_branch_start(shoot: Shooting, tracer: _Tracer, x_hopf: np.ndarray, shape: np.ndarray,
+                      period0: float, hopf: float,
+                      ) -> list[tuple[np.ndarray, PeriodicOrbit, tuple]]:  # fmt: skip
+    """Three small orbits of the Hopf branch, ``y_w1(0)`` fixed at 0.05, 0.1 and 0.2 mm.
+
+    Started from the hunting eigenvector ``shape`` about ``x_hopf`` and the Hopf period
+    (natural parameter: the speed is an unknown). Returns ``(u, orbit, linearisation)``
+    of each, in order of amplitude.
+    """
+    iy = tracer.iy
+    seeds = SMALL_ORBIT_SEEDS
+    small: list[tuple[np.ndarray, PeriodicOrbit, tuple]] = []
+    u = shoot.pack(x_hopf + seeds[0] * shape, period0, kmh_to_ms(hopf))
+    for n, eps in enumerate(seeds):
+        target = (x_hopf[Y_W1] + eps) / STATE_SCALE[Y_W1]
+        if n >= 2:
+            u = small[-1][0] + (small[-1][0] - small[-2][0]) * (eps - seeds[n - 1]) / (
+                seeds[n - 1] - seeds[n - 2])  # fmt: skip
+        u = u.copy()
+        u[iy] = target
+
+        def fun(w: np.ndarray, target: float = target) -> np.ndarray:
+            return np.append(shoot.residual(w), w[iy] - target)
+
+        def jac_fun(w: np.ndarray, r: np.ndarray) -> np.ndarray:
+            row = np.zeros(w.size)
+            row[iy] = 1.0
+            return np.vstack([shoot.jacobian(w, r[:-1]), row])
+
+        u, norm, it, ok, _ = newton(fun, jac_fun, u, tol=1e-9, max_iter=20)
+        if not ok:
+            raise RuntimeError(f"no small limit cycle found near the Hopf point ({hopf:.1f} km/h)")
+        orbit, lin = tracer.solve(u, norm, it)
+        small.append((u, orbit, lin))
+    return small
 
 
 def _seed_orbit(model: Model, shoot: Shooting, speed_kmh: float, amplitude: float,
