@@ -25,7 +25,6 @@ result's ``notes`` say so.
 
 from __future__ import annotations
 
-import functools
 import math
 import re
 from collections.abc import Callable, Mapping, Sequence
@@ -34,20 +33,14 @@ from typing import Any
 
 import numpy as np
 
-from railhunt.studies.design import Point, _tied, frequency_speed, parse_ties
+from railhunt.studies.design import Point, _tied, parse_ties
+from railhunt.studies.evaluation import Evaluation
 from railhunt.studies.execute import CONNECT_TIMEOUT, check_connect_timeout, check_workers
-from railhunt.studies.factors import (
-    Factor,
-    check_model,
-    function_name,
-    function_task,
-    parse_factors,
-    vehicle_outputs,
-)
+from railhunt.studies.factors import Factor, check_model, parse_factors
 from railhunt.studies.outputs import OutputOptions, options_from
 from railhunt.studies.runner import run_study
 from railhunt.studies.sensitivity_result import SensitivityResult
-from railhunt.studies.store import STATUS_NO_CRITICAL_SPEED, SweepResults, columns_for
+from railhunt.studies.store import STATUS_NO_CRITICAL_SPEED, SweepResults
 from railhunt.vehicle import Vehicle
 
 __all__ = ["METHODS", "SensitivityResult", "sensitivity"]
@@ -264,49 +257,17 @@ def sensitivity(
 
     meta.update(railhunt=__version__, source=source_hash())
     if isinstance(model, Vehicle):
-        from railhunt.provenance import provenance, vehicle_block
-        from railhunt.studies.sweep import _task
-        from railhunt.track import SingleDefect
-
-        groups = vehicle_outputs(outputs)
-        options.check_for(groups)
-        for p in points:  # every point must make a valid vehicle, before any work starts
-            try:
-                model.replace(**p.values)
-            except ValueError as exc:
-                raise ValueError(f"point {p.index} of the sample is not a valid vehicle ({exc});"
-                                 " narrow the factor's distribution") from None  # fmt: skip
-        excitation = SingleDefect() if excitation is None else excitation
-        speeds = {p.index: frequency_speed(p, names, frequency_speed_kmh) for p in points}
-        meta.update(vehicle=vehicle_block(model), provenance=provenance(model),
-                    sweep_outputs=list(groups), creep_law=creep_law,
-                    ties={f: [lf[0], lf[1]] for f, lf in tie_map.items()},
-                    columns=columns_for(param_cols, groups), **options.describe(groups))
-        if "critical_speed" in groups or "hunting_frequency" in groups:
-            meta["excitation"] = repr(excitation)
-        if "hunting_frequency" in groups:
-            meta["frequency_speed_kmh"] = sorted(set(speeds.values()))
-        task = functools.partial(_task, vehicle=model, outputs=groups, excitation=excitation,
-                                 creep_law=creep_law, amplitude=None,
-                                 output_options=options)  # fmt: skip
-        items = [(p.index, (p, speeds[p.index])) for p in points]
-        warm = _warm_up
-    else:
-        meta.update(function=function_name(model),
-                    columns=["point", "line", *param_cols, *outputs, "status", "message"])
-        task = functools.partial(function_task, function=model, outputs=outputs)
-        items = [(p.index, (p.index, p.values)) for p in points]
-        warm = None
+        meta.update(ties={f: [lf[0], lf[1]] for f, lf in tie_map.items()})
+    evaluation = Evaluation(model, names, param_cols, outputs, options, excitation, creep_law,
+                            frequency_speed_kmh)  # fmt: skip
+    evaluation.check(points)
+    meta.update(evaluation.meta)
+    items = evaluation.items(points)
+    task, warm = evaluation.task, evaluation.warm_up
     study = run_study(items, task, meta, label=method, out=out, resume=resume,
                       overwrite=overwrite, client=client, scheduler=scheduler, workers=workers,
                       progress=progress, warm_up=warm, connect_timeout=connect_timeout)  # fmt: skip
     return analyse_study(study, method, facs, x, outputs, seed, num_resamples, conf_level)
-
-
-def _warm_up() -> None:
-    from railhunt.studies.sweep import warm_up
-
-    warm_up()
 
 
 def analyse_study(study: SweepResults, method: str, factors: Sequence[Factor], x: np.ndarray,
