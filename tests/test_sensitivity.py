@@ -91,6 +91,13 @@ def test_kill_and_resume_same_indices_bit_for_bit(tmp_path):
     assert part.read_bytes() == (tmp_path / "whole.csv").read_bytes()
 
 
+def test_same_seed_same_intervals_even_seed_0():
+    factors = {"x1": (-PI, PI), "x2": (-PI, PI), "x3": (-PI, PI)}
+    runs = [sensitivity(ishigami, factors, ["y"], samples=32, seed=0, workers=1)
+            for _ in range(2)]
+    assert runs[0].indices == runs[1].indices
+
+
 def test_dropped_blocks_are_counted_not_nan():
     def holes(x1: float, x2: float) -> dict[str, float]:
         return {"y": math.nan if x1 > 0.9 else x1 + 2.0 * x2}

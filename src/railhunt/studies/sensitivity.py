@@ -141,19 +141,22 @@ def analyse(method: str, factors: Sequence[Factor], x: np.ndarray, y: np.ndarray
     y_kept = blocks[keep].ravel()
     import warnings
 
+    # A generator, not the int: SALib's Sobol analysis ignores a seed of 0 (``if seed:``)
+    # and would draw its bootstrap from numpy's global state.
+    rng = np.random.default_rng(seed)
     with warnings.catch_warnings(), np.errstate(divide="ignore", invalid="ignore"):
         warnings.simplefilter("ignore", RuntimeWarning)
         if method == "sobol":
             res = _salib("analyze.sobol").analyze(problem, y_kept, calc_second_order=False,
                                                   num_resamples=num_resamples,
-                                                  conf_level=conf_level, seed=seed)  # fmt: skip
+                                                  conf_level=conf_level, seed=rng)  # fmt: skip
             keys = ("S1", "S1_conf", "ST", "ST_conf")
         else:
             x_kept = x.reshape(-1, block, d)[keep].reshape(-1, d)
             res = _salib("analyze.morris").analyze(problem, x_kept, y_kept,
                                                    num_resamples=num_resamples,
                                                    conf_level=conf_level,
-                                                   num_levels=MORRIS_LEVELS, seed=seed)  # fmt: skip
+                                                   num_levels=MORRIS_LEVELS, seed=rng)  # fmt: skip
             keys = ("mu_star", "mu_star_conf", "sigma")
     return {k: np.asarray(res[k], dtype=float) for k in keys}, dropped
 
