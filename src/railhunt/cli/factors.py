@@ -15,7 +15,8 @@ import click
 from railhunt.cli.errors import CliError
 from railhunt.cli.rules import Command
 
-__all__ = ["FACTOR_FLAGS", "FactorCommand", "factors_from", "output_options_from"]
+__all__ = ["FACTOR_FLAGS", "FactorCommand", "curve_flags", "factors_from", "output_columns",
+           "output_options_from"]
 
 #: The flags that describe the NAME before them.
 FACTOR_FLAGS = ("--from", "--to", "--tolerance")
@@ -118,3 +119,14 @@ def curve_flags(func: Any) -> Any:
                         help="Cant of that curve (m).")(func)
     return click.option("--curve-radius", "curve_radius", type=float, metavar="M",
                         help="Radius of the curve of the curving outputs (m).")(func)
+
+
+def output_columns(text: str, flag: str) -> tuple[str, ...]:
+    """The results columns of a comma-separated ``flag`` value, checked."""
+    from railhunt.studies.factors import COLUMN_OUTPUT
+
+    chosen = tuple(dict.fromkeys(o.strip() for o in text.split(",") if o.strip()))
+    bad = [o for o in chosen if o not in COLUMN_OUTPUT]
+    if bad or not chosen:
+        raise CliError(f"{flag} {text}: choose from {', '.join(COLUMN_OUTPUT)}")
+    return chosen

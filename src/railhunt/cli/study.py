@@ -135,8 +135,11 @@ def study_options(out_required: bool = True,
 STEP_PARAMETERS = frozenset({"C_d1", "C_d2", "K_d"})
 
 #: Simulated time (s) of one point per study output: the nonlinear critical-speed search
-#: (~8 trials), the hunting-frequency run and shooting; the linear outputs cost no steps.
-OUTPUT_SECONDS = {"critical_speed": 120.0, "hunting_frequency": 60.0}
+#: (~8 trials), the hunting-frequency run and shooting, the fold speed's continuation; the
+#: linear and curving outputs cost no steps.
+OUTPUT_SECONDS = {"critical_speed": 120.0, "hunting_frequency": 60.0,
+                  # the fold: ~80 orbits of ~1.2 shooting Jacobians (40 half-period flows)
+                  "fold_speed": 450.0}
 
 
 def announce_study(vehicle: Any, points: list[Any], outputs: tuple[str, ...],

@@ -77,7 +77,8 @@ def sample_of(method: str, factors: Sequence[Factor], samples: int, seed: int) -
     return _salib("sample.morris").sample(problem, samples, num_levels=MORRIS_LEVELS, seed=seed)
 
 
-def _check_samples(method: str, samples: int) -> int:
+def check_samples(method: str, samples: int) -> int:
+    """``samples`` checked for ``method`` (an integer >= 2; a power of 2 for Sobol)."""
     if isinstance(samples, bool) or int(samples) != samples or not 2 <= samples <= 2**20:
         raise ValueError(f"samples = {samples!r} is invalid: must be an integer in [2, 2^20]")
     samples = int(samples)
@@ -229,7 +230,7 @@ def sensitivity(
     check_model(model)
     if method not in METHODS:
         raise ValueError(f"method = {method!r} is invalid: must be one of {', '.join(METHODS)}")
-    samples = _check_samples(method, samples)
+    samples = check_samples(method, samples)
     if client is None and scheduler is None:
         check_workers(workers)
     check_connect_timeout(connect_timeout)

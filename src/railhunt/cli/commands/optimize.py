@@ -7,10 +7,15 @@ from pathlib import Path
 
 import click
 
-from railhunt.cli.commands.sensitivity import _columns
-from railhunt.cli.commands.sweep import _parse_ties
+from railhunt.cli.commands.sweep import parse_tie_option
 from railhunt.cli.errors import CliError
-from railhunt.cli.factors import FactorCommand, curve_flags, factors_from, output_options_from
+from railhunt.cli.factors import (
+    FactorCommand,
+    curve_flags,
+    factors_from,
+    output_columns,
+    output_options_from,
+)
 from railhunt.cli.options import build_vehicle, vehicle_options
 from railhunt.cli.output import fmt, json_safe, show_progress, stdout_console, traced
 from railhunt.cli.study import (
@@ -64,7 +69,7 @@ Example:
 @click.option("--generations", type=int, default=10, show_default=True, metavar="N",
               help="Generations (the first is random).")
 @click.option("--seed", type=int, default=0, show_default=True, help="Seed of NSGA-II.")
-@click.option("--tie", "ties", multiple=True, callback=_parse_ties, metavar="F=L",
+@click.option("--tie", "ties", multiple=True, callback=parse_tie_option, metavar="F=L",
               help="F follows L at every point: f22=f11, or f22=0.9*f11 (repeatable).")
 @curve_flags
 @study_options()
@@ -90,7 +95,7 @@ def optimize_command(ctx, names, froms, tos, tolerances, objectives, constraints
     with running_study(out):
         cols = [parse_objective(o)[1] for o in objectives]
         cols += [parse_constraint(c)[0] for c in constraints]
-    columns = _columns(",".join(cols), "--objective/--constraint")
+    columns = output_columns(",".join(cols), "--objective/--constraint")
     check_study_outputs(out, resume, overwrite, png=png)
     vehicle = build_vehicle(vehicle_file, sets)
     factors = factors_from(ctx)

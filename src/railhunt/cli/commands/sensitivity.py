@@ -7,9 +7,14 @@ from pathlib import Path
 
 import click
 
-from railhunt.cli.commands.sweep import _parse_ties
-from railhunt.cli.errors import CliError
-from railhunt.cli.factors import FactorCommand, curve_flags, factors_from, output_options_from
+from railhunt.cli.commands.sweep import parse_tie_option
+from railhunt.cli.factors import (
+    FactorCommand,
+    curve_flags,
+    factors_from,
+    output_columns,
+    output_options_from,
+)
 from railhunt.cli.options import build_vehicle, vehicle_options
 from railhunt.cli.output import fmt, json_safe, show_progress, stdout_console, traced
 from railhunt.cli.study import (
@@ -57,16 +62,6 @@ Examples:
 """
 
 
-def _columns(text: str, flag: str) -> tuple[str, ...]:
-    from railhunt.studies.factors import COLUMN_OUTPUT
-
-    chosen = tuple(dict.fromkeys(o.strip() for o in text.split(",") if o.strip()))
-    bad = [o for o in chosen if o not in COLUMN_OUTPUT]
-    if bad or not chosen:
-        raise CliError(f"{flag} {text}: choose from {', '.join(COLUMN_OUTPUT)}")
-    return chosen
-
-
 def announce_points(vehicle, factors, xs, names, columns, workers, scheduler) -> None:
     """Say before it starts that a study of these sampled points takes more than a minute."""
     from railhunt.studies.design import Point
@@ -94,7 +89,7 @@ def announce_points(vehicle, factors, xs, names, columns, workers, scheduler) ->
               help="Seed of the sample and the bootstrap.")
 @click.option("--output", "output", default="critical_speed_kmh", show_default=True,
               metavar="LIST", help="Comma-separated results columns to analyse.")
-@click.option("--tie", "ties", multiple=True, callback=_parse_ties, metavar="F=L",
+@click.option("--tie", "ties", multiple=True, callback=parse_tie_option, metavar="F=L",
               help="F follows L at every point: f22=f11, or f22=0.9*f11 (repeatable).")
 @curve_flags
 @study_options()
@@ -110,17 +105,17 @@ def sensitivity_command(ctx, names, froms, tos, tolerances, method, samples, see
     """``railhunt sensitivity`` (help text: ``_HELP``)."""
     from railhunt import sensitivity
     from railhunt.studies.factors import parse_factors
-    from railhunt.studies.sensitivity import _check_samples, sample_of
+    from railhunt.studies.sensitivity import check_samples, sample_of
 
     check_workers_option(workers)
-    columns = _columns(output, "--output")
+    columns = output_columns(output, "--output")
     check_study_outputs(out, resume, overwrite, png=png)
     vehicle = build_vehicle(vehicle_file, sets)
     factors = factors_from(ctx)
     options = output_options_from(curve_radius, cant, curve_speed, damping_range)
     with running_study(out), scheduler_client(scheduler, connect_timeout) as client:
         facs = parse_factors(vehicle, factors)
-        xs = sample_of(method, facs, _check_samples(method, samples), seed)
+        xs = sample_of(method, facs, check_samples(method, samples), seed)
         announce_points(vehicle, factors, xs, [f.name for f in facs], columns, workers,
                         scheduler)  # fmt: skip
         result = sensitivity(vehicle, factors, columns, method=method, samples=samples,
