@@ -124,6 +124,9 @@ def test_capped_critical_speed():
            "message": "hunting at every speed tried, down to 20 km/h"}
     assert capped_value("critical_speed_kmh", row) == 20.0
     assert capped_value("critical_speed_kmh", {"status": "failed", "message": "x"}) is None
+    row = {"status": "failed", "message": "ValueError: the centred equilibrium stays stable up "
+           "to 2000 km/h: no Hopf point", "fold_speed_kmh": math.nan}
+    assert capped_value("fold_speed_kmh", row) == 2000.0
 
 
 def test_blow_off_force_cannot_enter_linear_speed():

@@ -14,7 +14,8 @@ trajectories of ``D + 1`` points. So:
 - a critical speed that the search did not bracket is **capped** at the edge of the search
   (``stable at every speed tried, up to 800 km/h`` counts as 800 km/h; hunting at every
   speed down to 20 km/h as 20 km/h); a linear critical speed with no Hopf point up to the
-  search's 1000 km/h counts as 1000 km/h. These are counted in ``capped``;
+  search's 1000 km/h counts as 1000 km/h, and a fold speed without a Hopf point below
+  2000 km/h (no limit cycle there at all) as 2000 km/h. These are counted in ``capped``;
 - any other point without a value (a failed run, no fold found, a point lost) has its
   **whole block (trajectory) dropped**, counted in ``dropped``: the indices are those of
   the remaining base samples, never computed over a NaN.
@@ -89,6 +90,7 @@ def check_samples(method: str, samples: int) -> int:
 
 
 _CAP = re.compile(r"(?:up|down) to ([0-9.eE+-]+) km/h")
+_NO_HOPF = re.compile(r"stays stable up to ([0-9.eE+-]+) km/h: no Hopf point")
 
 
 def capped_value(column: str, row: Mapping[str, Any]) -> float | None:
@@ -99,6 +101,9 @@ def capped_value(column: str, row: Mapping[str, Any]) -> float | None:
     if column == "linear_critical_speed_kmh" and row.get("status") == "ok" \
             and math.isnan(float(row.get(column, math.nan))):  # fmt: skip
         return LINEAR_CAP_KMH
+    if column == "fold_speed_kmh" and row.get("status") == "failed":
+        match = _NO_HOPF.search(str(row.get("message", "")))
+        return float(match.group(1)) if match else None
     return None
 
 
