@@ -44,7 +44,7 @@ def test_wear_number_zero_when_centred_on_straight_track():
     # Centred, only the conical wheels' spin creepage is left, which T-gamma leaves out;
     # the longitudinal creepage is round-off (1e-16).
     m = Model(Vehicle.paper2019())
-    assert np.all(wheel_wear_numbers(m, 60.0, np.zeros(38)) < 1e-9)
+    assert np.all(wheel_wear_numbers(m, 60.0, np.zeros(m.layout.n_state)) < 1e-9)
 
 
 @pytest.mark.parametrize("direction", ["left", "right"])
@@ -58,7 +58,7 @@ def test_creep_forces_rebuild_the_guiding_forces(direction):
     c = wheelset_creep(m, kmh_to_ms(120.0), res.state, 0, route)
     s = m.system(route=route)
     y, psi = res.state[s.wheelsets[0, 0]], res.state[s.wheelsets[0, 1]]
-    _, _, d_l, d_r = wheel_geometry(y, s.wheel_rail)
+    _, _, d_l, d_r = wheel_geometry(y, s.wheel_rail[0])
     f_l = c[0, 1] * math.cos(d_l) * math.cos(psi) + c[0, 0] * math.sin(psi) \
         - res.Q[0, 0] * math.tan(d_l)
     f_r = c[1, 1] * math.cos(d_r) * math.cos(psi) + c[1, 0] * math.sin(psi) \

@@ -39,7 +39,6 @@ from railhunt.analysis.continuation import (
 )
 from railhunt.analysis.linear import linear_critical_speed
 from railhunt.analysis.periodic import PeriodicOrbit, Shooting
-from railhunt.kernel.layout import N_STATE
 from railhunt.model import Model
 from railhunt.results import Columns, ResultDisplay, Row
 from railhunt.units import kmh_to_ms
@@ -161,7 +160,7 @@ def fold_speed(
                      coarse_step_amplitude, min_amplitude=0.75 * SMALL_ORBIT_SEEDS[-1],
                      max_ds=max_ds)  # fmt: skip
     tracer = _Tracer(shoot, coarse, None)
-    small = hopf_branch_start(shoot, tracer, np.zeros(N_STATE), shape, period0, hopf)
+    small = hopf_branch_start(shoot, tracer, np.zeros(shoot.n_state), shape, period0, hopf)
     tol = max(2.0, 0.01 * hopf)
 
     def passed_fold(orbits: list[PeriodicOrbit]) -> str:

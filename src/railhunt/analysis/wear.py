@@ -54,11 +54,12 @@ def wheelset_creep(model: Model, speed: float, x: np.ndarray, j: int = 0,
     iy, ip = int(s.wheelsets[j, 0]), int(s.wheelsets[j, 1])
     pos = v * t - s.wheelset_delay[j]
     yr, _ = alignment(pos, s.track, s.track_samples)
-    q_l, q_r, track_rate = wheel_loads(pos, v, s.wheel_rail, s.route)
-    r_l, r_r, d_l, d_r = wheel_geometry(x[iy] - yr, s.wheel_rail)
+    wr = s.wheel_rail[j]
+    q_l, q_r, track_rate = wheel_loads(pos, v, wr, s.route)
+    r_l, r_r, d_l, d_r = wheel_geometry(x[iy] - yr, wr)
     out = wheel_creep(r_l, r_r, math.cos(d_l), math.sin(d_l), math.cos(d_r), math.sin(d_r),
                       math.cos(x[ip]), math.sin(x[ip]), x[nq + iy], x[nq + ip] + track_rate, v,
-                      s.wheel_rail, q_l, q_r)  # fmt: skip
+                      wr, q_l, q_r)  # fmt: skip
     fxl, fyl, mzl, fxr, fyr, mzr, xl, yl, sl, xr, yr_, sr = out
     return np.array([[fxl, fyl, mzl, xl, yl, sl], [fxr, fyr, mzr, xr, yr_, sr]])
 
