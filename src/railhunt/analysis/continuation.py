@@ -104,6 +104,7 @@ class _Limits:
     max_step_amplitude: float
     min_amplitude: float = 0.0  # m: a branch whose amplitude falls below this has ended
     max_ds: float = 50.0  # largest arclength step (scaled unknowns)
+    newton_tol: float = 1e-9  # corrector's tolerance (scaled residual)
 
 
 class _Tracer:
@@ -166,8 +167,8 @@ class _Tracer:
                 def jac_fun(w, r, t_row=t_row):
                     return np.vstack([shoot.jacobian(w, r[:-1]), t_row])
 
-                u_new, norm, it, ok, _ = newton(fun, jac_fun, u_pred, tol=1e-9, max_iter=8,
-                                                jac=np.vstack([jac, t_row]))  # fmt: skip
+                u_new, norm, it, ok, _ = newton(fun, jac_fun, u_pred, tol=lim.newton_tol,
+                                                max_iter=8, jac=np.vstack([jac, t_row]))
                 # Reject a corrector that strayed far from the predictor (it may have jumped
                 # to another branch) or fell onto the equilibrium, which solves the shooting
                 # equations for any period.

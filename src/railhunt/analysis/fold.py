@@ -106,6 +106,7 @@ def fold_speed(
     fine_step_amplitude: float = 1e-4,
     max_points: int = 80,
     max_ds: float = 150.0,
+    coarse_tol: float = 1e-5,
     creep_law: str = "heuristic",
 ) -> FoldSpeed:
     """Lowest speed of a limit cycle on the Hopf branch, by a short continuation.
@@ -127,6 +128,9 @@ def fold_speed(
     max_ds : float
         Largest arclength step of the coarse trace (scaled unknowns: mm, 10 mm/s, kN, ...);
         the speed and amplitude caps usually bind first.
+    coarse_tol : float
+        Corrector tolerance of the coarse trace (scaled shooting residual); the
+        refinement solves to 1e-9, as the bifurcation diagram does.
     creep_law : str
         See :class:`railhunt.model.Model`.
 
@@ -158,7 +162,7 @@ def fold_speed(
     shoot.set_period_hint(period0)
     coarse = _Limits(min_kmh, hopf + 50.0, max_amplitude, int(max_points), coarse_step_kmh,
                      coarse_step_amplitude, min_amplitude=0.75 * SMALL_ORBIT_SEEDS[-1],
-                     max_ds=max_ds)  # fmt: skip
+                     max_ds=max_ds, newton_tol=coarse_tol)  # fmt: skip
     tracer = _Tracer(shoot, coarse, None)
     small = hopf_branch_start(shoot, tracer, np.zeros(shoot.n_state), shape, period0, hopf)
     tol = max(2.0, 0.01 * hopf)
