@@ -157,3 +157,22 @@ def test_vehicle_factor_names_checked():
 
     with pytest.raises(UnknownParameterError, match="C_d3"):
         sensitivity(Vehicle.paper2019(), {"C_d3": (1e5, 2e5), "K_d": (1e6, 2e6)}, samples=8)
+
+
+def test_on_a_given_scheduler_same_indices_as_in_process(tmp_path):
+    """The points run on a Dask cluster joined by its address; the file and the indices
+    are those of the in-process run."""
+    from railhunt.studies.execute import local_cluster
+
+    v = Vehicle.paper2019()
+    factors = {"C_d1": ("tolerance", 0.2), "K_px": ("tolerance", 0.2)}
+    here = sensitivity(v, factors, ["linear_critical_speed_kmh"], samples=4, seed=2,
+                       workers=1, out=tmp_path / "here.csv")
+    cluster = local_cluster(2)
+    try:
+        there = sensitivity(v, factors, ["linear_critical_speed_kmh"], samples=4, seed=2,
+                            scheduler=cluster.scheduler_address, out=tmp_path / "there.csv")
+    finally:
+        cluster.close()
+    assert there.indices == here.indices
+    assert (tmp_path / "there.csv").read_bytes() == (tmp_path / "here.csv").read_bytes()
