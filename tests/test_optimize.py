@@ -34,6 +34,8 @@ def test_zdt1_front_found_and_spread(tmp_path):
     assert front["f1"].min() < 0.02 and front["f1"].max() > 0.95  # spread over the front
     assert len(r.evaluated) == 32 * 40
     assert np.all(np.diff(r.hypervolume) >= -1e-12)  # the front never gets worse
+    assert "on the front" in repr(r) and "<table" in r._repr_html_()
+    assert r.to_dict()["front"] and r.figure(tmp_path / "zdt1.png").exists()
 
 
 def test_resumed_run_reaches_the_same_front(tmp_path):

@@ -62,6 +62,7 @@ def test_ishigami_through_store(tmp_path):
     df = r.to_dataframe()
     assert list(df.columns) == ["output", "factor", "S1", "S1_conf", "ST", "ST_conf"]
     assert "sobol" in repr(r) and "<table" in r._repr_html_()
+    assert r.figure(tmp_path / "s.png").read_bytes().startswith(b"\x89PNG")
 
 
 def test_g_function():
@@ -115,6 +116,7 @@ def test_morris_ranks_linear_function():
     assert r.index("y", "c", "mu_star") == 0.0
     assert list(r.to_dataframe().columns) == ["output", "factor", "mu_star", "mu_star_conf",
                                               "sigma"]
+    assert r.figure() is not None and "morris" in repr(r)
 
 
 def test_capped_critical_speed():
