@@ -1,0 +1,104 @@
+"""The verdict words: what railhunt means when it calls a run, a trial or a search one thing.
+
+Each word is defined once, here (:data:`VERDICTS`); the documentation
+(docs/critical-speeds.md, "Verdicts") and the ``--help`` of the commands that judge
+runs print these definitions (:func:`verdict_help`), and the code uses each word only in
+that sense.
+
+This module also tells a numerical blow-up from a derailment (:func:`ending`): a run
+that stops early either left the track (a wheelset beyond the derailment limit, physics)
+or the integration blew up (the state grew by orders of magnitude within a few steps, or
+became non-finite: numerics, a smaller step is needed).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+STABLE = "stable"
+HUNTING = "hunting"
+STEADY_CYCLE = "steady cycle"
+UNDECIDED = "undecided"
+DERAILED = "derailed"
+BLOW_UP = "blow-up"
+DIVERGENCE = "divergence"
+LIMIT_REACHED = "limit reached"
+
+#: Every verdict word and its one meaning.
+VERDICTS: dict[str, str] = {
+    STABLE: "the motion died out: the envelope of the leading wheelset's lateral "
+            "displacement fell below the decay threshold (0.02 mm, or a tenth of the "
+            "excitation when that is smaller). Nothing else is called stable.",
+    HUNTING: "the motion did not die out and kept oscillating: it settled on a limit "
+             "cycle (a steady cycle) or kept growing, without leaving the track.",
+    STEADY_CYCLE: "hunting on a limit cycle: the envelope is stationary (within ±0.01 1/s "
+                  "over 3 s, peaks within 5 %), outside the range where the linear motion "
+                  "itself is that slow (near the Hopf point a small oscillation must grow "
+                  "or decay first).",
+    UNDECIDED: "the run ended (its longest duration, or a too short run) neither died "
+               "out nor settled on a cycle; the reason is given. A search counts it as "
+               "not stable and says so.",
+    DERAILED: "a wheelset moved beyond the derailment limit (25 mm from the track centre "
+              "line), or in a curve climbed its flange: physics, the vehicle left the "
+              "track.",
+    BLOW_UP: "the numerical integration blew up (the state grew by orders of magnitude "
+             "within a few steps, or became non-finite): numerics, not physics; the step "
+             "is too large for the model's fastest dynamics.",
+    DIVERGENCE: "a real eigenvalue of the linearised model is in the right half plane: "
+                "the equilibrium drifts away without oscillating (no Hopf point).",
+    LIMIT_REACHED: "a limit of the validity envelope was reached (Y/Q against Nadal, wheel "
+                   "unloading, ΣY against Prud'homme, cant deficiency, bump stop, flange "
+                   "clearance): the answer stops there and names the limit.",
+}  # fmt: skip
+
+#: A run that stops early blew up when its largest state grew by more than this factor
+#: over its last :data:`BLOW_UP_STEPS` stored samples.
+BLOW_UP_GROWTH = 100.0
+#: Samples over which :data:`BLOW_UP_GROWTH` is measured.
+BLOW_UP_STEPS = 10
+
+
+def verdict_help(words: Sequence[str] = tuple(VERDICTS)) -> str:
+    """The definitions of ``words`` as one paragraph per word (for ``--help`` epilogs)."""
+    return "\b\nVerdicts:\n" + "\n".join(f"  {w}: {VERDICTS[w]}" for w in words)
+
+
+def ending(status: str, x: np.ndarray, scale: np.ndarray | None = None) -> str:
+    """How a run that ended with solver ``status`` ended, in verdict words.
+
+    Parameters
+    ----------
+    status : str
+        The integrator's status name (``"ok"``, ``"derailed"``, ``"diverged"``,
+        ``"step-failed"``).
+    x : numpy.ndarray
+        The stored states, one row per sample.
+    scale : numpy.ndarray, optional
+        Indices of the states that measure the motion (default: all).
+
+    Returns
+    -------
+    str
+        ``"ok"`` for a run that reached its end; :data:`BLOW_UP` for a non-finite state,
+        a step failure or a derailment reached by growth of more than
+        :data:`BLOW_UP_GROWTH` times within the last :data:`BLOW_UP_STEPS` samples;
+        :data:`DERAILED` otherwise.
+    """
+    if status == "ok":
+        return "ok"
+    if status != "derailed":
+        return BLOW_UP
+    xx = np.asarray(x, dtype=float)
+    if scale is not None:
+        xx = xx[:, scale]
+    if xx.shape[0] < 2:
+        return DERAILED
+    size = np.max(np.abs(xx), axis=1)
+    if not np.all(np.isfinite(size)):
+        return BLOW_UP
+    before = size[max(0, size.size - 1 - BLOW_UP_STEPS)]
+    if size[-1] > BLOW_UP_GROWTH * max(before, 1e-12):
+        return BLOW_UP
+    return DERAILED
