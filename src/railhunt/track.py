@@ -69,7 +69,7 @@ class InitialDisplacement:
     Parameters
     ----------
     amplitude : float
-        Initial lateral displacement (m).
+        Initial lateral displacement (m), within ±0.02 m.
     wheelsets : tuple of int
         Which wheelsets (1 = leading) are displaced; all four by default.
     """
@@ -78,7 +78,8 @@ class InitialDisplacement:
     wheelsets: tuple[int, ...] = (1, 2, 3, 4)
 
     def __post_init__(self) -> None:
-        _check("amplitude", self.amplitude, -0.05, 0.05, "m")
+        # A start beyond 20 mm is past the flange, next to the 25 mm derailment limit.
+        _check("amplitude", self.amplitude, -0.02, 0.02, "m")
         for w in self.wheelsets:
             if w not in (1, 2, 3, 4):
                 raise ValueError(f"wheelsets contains {w!r}: wheelsets are numbered 1 to 4")

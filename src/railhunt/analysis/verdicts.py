@@ -14,8 +14,7 @@ became non-finite: numerics, a smaller step is needed).
 from __future__ import annotations
 
 from collections.abc import Sequence
-
-import numpy as np
+from typing import Any
 
 STABLE = "stable"
 HUNTING = "hunting"
@@ -62,10 +61,11 @@ BLOW_UP_STEPS = 10
 
 def verdict_help(words: Sequence[str] = tuple(VERDICTS)) -> str:
     """The definitions of ``words`` as one paragraph per word (for ``--help`` epilogs)."""
-    return "\b\nVerdicts:\n" + "\n".join(f"  {w}: {VERDICTS[w]}" for w in words)
+    return "Verdicts (docs: Critical speeds, Verdicts):\n\n" + "\n\n".join(
+        f"{w}: {VERDICTS[w]}" for w in words)
 
 
-def ending(status: str, x: np.ndarray, scale: np.ndarray | None = None) -> str:
+def ending(status: str, x: Any, scale: Any = None) -> str:
     """How a run that ended with solver ``status`` ended, in verdict words.
 
     Parameters
@@ -86,6 +86,8 @@ def ending(status: str, x: np.ndarray, scale: np.ndarray | None = None) -> str:
         :data:`BLOW_UP_GROWTH` times within the last :data:`BLOW_UP_STEPS` samples;
         :data:`DERAILED` otherwise.
     """
+    import numpy as np  # here, so that ``--help`` (which prints VERDICTS) loads no numerics
+
     if status == "ok":
         return "ok"
     if status != "derailed":

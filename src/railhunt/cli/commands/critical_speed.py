@@ -13,6 +13,7 @@ from typing import Any
 
 import click
 
+from railhunt.analysis.verdicts import verdict_help
 from railhunt.cli.errors import user_input
 from railhunt.cli.options import (
     CURVE_RULES,
@@ -57,7 +58,8 @@ RULES = (
 )  # fmt: skip
 
 
-@command("critical-speed", rules=RULES, short_help="Nonlinear and linear critical speeds (km/h).")
+@command("critical-speed", rules=RULES, epilog=verdict_help(),
+         short_help="Nonlinear and linear critical speeds (km/h).")
 @defect_options(
     "Peak lateral displacement of the track defect run over at each trial speed (mm), "
     "within ±50 mm."
@@ -150,6 +152,12 @@ def critical_speed_command(
     speed, loses stability.
     """
     vehicle = build_vehicle(vehicle_file, sets)
+    if method != "stochastic" and amplitude == 0.0:
+        from railhunt.cli.errors import CliError
+
+        raise CliError("--amplitude 0 mm is invalid: a defect of zero size excites nothing, "
+                       "so every speed would look stable; give a nonzero amplitude, within "
+                       "±50 mm")  # fmt: skip
     if method == "stochastic":
         from railhunt.cli.commands.stochastic import report_stochastic_critical_speed
 
@@ -215,7 +223,7 @@ def critical_speed_command(
             fmt(trial.growth_rate, ".3g"),
             f"{trial.duration:.1f}",
             note,
-            style="red" if trial.verdict == "hunting" else "green",
+            style="green" if trial.verdict == "stable" else "red",
         )
     console = stdout_console()
     console.print(table)
@@ -224,6 +232,8 @@ def critical_speed_command(
                       "±0.01 1/s over 3 s (a small negative growth is still a cycle); "
                       "undecided: the verdict is the envelope's trend after 60 s")  # fmt: skip
     console.print(_nonlinear_line(result, tol_kmh))
+    for warning in getattr(result, "warnings", []):
+        console.print(f"[yellow]warning: {warning}[/yellow]")
     console.print(linear_critical_speed_line(linear, curved=curve is not None))
     if _above_linear(result, linear):
         console.print(f"[yellow]note: the nonlinear critical speed lies above the linear one "
@@ -238,6 +248,8 @@ STEADY = "steady cycle"
 
 def _trial_note(trial: Any) -> str:
     """The note column: the solver's status if not ok, else how the verdict was taken."""
+    if trial.verdict in ("derailed", "blow-up", "undecided"):
+        return getattr(trial, "reason", "") or trial.verdict
     if trial.status != "ok":
         return trial.status
     if not trial.decided:
@@ -285,10 +297,18 @@ def _nonlinear_line(result: Any, tol_kmh: float) -> str:
             f"hunting at {result.first_hunting_kmh:g} km/h, resolution {tol_kmh:g} km/h)"
         )
     verdicts = {t.verdict for t in result.trials}
-    if verdicts == {"stable"}:
-        why = "every trial speed up to 800 km/h was stable"
+    top = max((t.speed_kmh for t in result.trials), default=800.0)
+    if getattr(result, "limit_reached", False):
+        why = (f"stable up to {top:g} km/h, where the search stopped: limit reached, "
+               f"{result.limit.text}")  # fmt: skip
+    elif verdicts == {"stable"}:
+        why = f"every trial speed up to {top:g} km/h was stable"
+    elif "stable" not in verdicts:
+        low = min((t.speed_kmh for t in result.trials), default=20.0)
+        words = ", ".join(sorted(verdicts))
+        why = f"no trial speed down to {low:g} km/h was stable ({words})"
     else:
-        why = "every trial speed down to 20 km/h was hunting"
+        why = "the search did not bracket a change of verdict"
     return f"nonlinear critical speed: not found ({why})"
 
 
@@ -301,6 +321,13 @@ def _critical_json(
         "linear_critical_speed_kmh": linear.speed_kmh,
         "linear_hunting_frequency_hz": linear.frequency_hz,
         "linear_crossing_is_hunting_mode": bool(linear.is_hunting_mode),
+        "linear_crossing": getattr(linear, "crossing", ""),
+        "linear_unstable_from_kmh": getattr(linear, "unstable_from_kmh", None),
+        "warnings": list(getattr(result, "warnings", [])),
+        "limits": ([] if getattr(result, "limit", None) is None
+                   else [lim.to_dict() for lim in result.limit.limits]),
+        "curving_limit": (None if getattr(result, "limit", None) is None
+                          else result.limit.to_dict()),
         "bracketed": bool(result.bracketed),
         "first_hunting_speed_kmh": result.first_hunting_kmh,
         "tol_kmh": tol_kmh,
@@ -319,6 +346,7 @@ def _critical_json(
                 "duration_s": t.duration,
                 "decided": bool(t.decided),
                 "status": t.status,
+                "reason": getattr(t, "reason", ""),
             }
             for t in result.trials
         ],

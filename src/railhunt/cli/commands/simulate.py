@@ -7,6 +7,7 @@ from typing import Any
 
 import click
 
+from railhunt.analysis.verdicts import verdict_help
 from railhunt.cli.errors import CliError, user_input
 from railhunt.cli.options import (
     CURVE_LEAD_IN,
@@ -44,7 +45,8 @@ RULES = (
 )  # fmt: skip
 
 
-@command("simulate", rules=RULES, short_help="Simulate one speed: time history and phase plane.")
+@command("simulate", rules=RULES, epilog=verdict_help(),
+         short_help="Simulate one speed: time history and phase plane.")
 @click.option(
     "--speed",
     type=float,
@@ -68,9 +70,10 @@ RULES = (
     type=float,
     default=None,
     metavar="MM",
-    callback=number_range("mm", -50.0, 50.0, low_open=False, optional=True),
+    callback=number_range("mm", -20.0, 20.0, low_open=False, optional=True),
     help="Instead of a track defect, start with all four wheelsets displaced "
-    "laterally by this much (mm) on ideal track.",
+    "laterally by this much (mm) on ideal track, within ±20 mm (a start beyond it is "
+    "past the flange, toward the 25 mm derailment limit).",
 )
 @random_track_options(
     None,
