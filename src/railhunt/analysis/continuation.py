@@ -213,9 +213,9 @@ def bifurcation_diagram(
     around the Hopf point). So that a branch of large cycles not connected to it within
     the range is not missed, the vehicle is also simulated from each of ``seed_amplitudes``
     (an initial lateral displacement of all wheelsets) at the top of the range and, if that
-    is below the Hopf point, 10 km/h above the Hopf point, and when every release there
-    derails or decays, at lower speeds in steps of 50 km/h down to the bottom of the range
-    (:func:`seed_ladder`), so that the large branch and the lowest limit cycle do not
+    is below the Hopf point, 10 km/h above the Hopf point, and at lower speeds in steps of
+    50 km/h down to the bottom of the range (:func:`seed_ladder`: where the top release
+    derails, a lower one settles), so that the large branch and the lowest limit cycle do not
     depend on the top of the range; a cycle a release settles on that lies on no branch
     yet is refined by shooting and followed both ways. ``complete`` is True only when
     every branch was followed to its end and every cycle a release settled on lies on a
@@ -336,7 +336,7 @@ def bifurcation_diagram(
     # a cycle, while near a fold the large cycles' basins can be too small to reach); when
     # every release derails there, at lower speeds too (seed_ladder), so that the large
     # branch does not depend on the top of the range.
-    missed: list[str] = []
+    missed: list[tuple[float, float, str]] = []
     notes: list[str] = []
     for amp, seed_kmh, found in _seed_releases(model, shoot, path, seed_amplitudes,
                                                seed_ladder(lo, hi, hopf), branches,
@@ -359,9 +359,10 @@ def bifurcation_diagram(
             messages.append(f"branch from {amp * 1e3:g} mm at {seed_kmh:g} km/h "
                             f"({'down' if sign < 0 else 'up'}): {msg}")  # fmt: skip
         branches.append(make_branch(parts[0][::-1] + [orbit_c] + parts[1], "simulation"))
-    if missed:
+    missed_text = [text for v, a, text in missed if not _covered(branches, v, a)]
+    if missed_text:
         complete = False
-        messages.extend(missed)
+        messages.extend(missed_text)
     messages.extend(notes)
 
     hopf_type = classify_hopf(branches[0], hopf)
@@ -435,7 +436,7 @@ def _release(model: Model, shoot: Shooting, speed_kmh: float, amplitude: float,
 def seed_ladder(lo: float, hi: float, hopf: float, step_kmh: float = 50.0) -> list[float]:
     """Speeds (km/h) a release is tried at, in order: the top of the range, just above
     the Hopf point when the top is below it, then down from the top by ``step_kmh`` to
-    the bottom of the range (used only while every release derails or decays)."""
+    the bottom of the range."""
     first = [hi] + ([min(hopf + 10.0, 2.0 * hi)] if hopf + 10.0 > hi else [])
     down = [float(v) for v in np.arange(hi - step_kmh, lo - 1e-9, -step_kmh)]
     return first + [v for v in down if v not in first]
@@ -443,15 +444,15 @@ def seed_ladder(lo: float, hi: float, hopf: float, step_kmh: float = 50.0) -> li
 
 def _seed_releases(model: Model, shoot: Shooting, path: EquilibriumPath | None,
                    amplitudes: tuple[float, ...], speeds: list[float], branches: list,
-                   missed: list[str], notes: list[str]):  # fmt: skip
+                   missed: list[tuple[float, float, str]], notes: list[str]):  # fmt: skip
     """Releases that settle on a cycle on no branch yet: yields ``(amplitude, speed,
-    found)``. Walks ``speeds`` (:func:`seed_ladder`) until a speed where a release settles
-    on a cycle (every release size is tried there); appends to ``missed`` a sentence for
-    each cycle a release settled on that could not be refined or lies on no branch
-    afterwards, and to ``notes`` which releases left the track."""
+    found)`` for each, walking every speed of ``speeds`` (:func:`seed_ladder`) with every
+    release size (the caller follows each yielded cycle into a branch before the walk goes
+    on, so cycles on that branch are not followed again). Appends to ``missed``
+    ``(speed_kmh, amplitude, sentence)`` for each cycle a release settled on that shooting
+    could not refine, and to ``notes`` which releases left the track."""
     derailed: list[str] = []
     for seed_kmh in speeds:
-        settled = False
         for amp in amplitudes:
             outcome, found = _release(model, shoot, seed_kmh, amp, path)
             if outcome in ("derailed", "blow-up"):
@@ -459,22 +460,25 @@ def _seed_releases(model: Model, shoot: Shooting, path: EquilibriumPath | None,
                 continue
             if outcome == "decays":
                 continue
-            settled = True
             if found is None:
-                missed.append(f"not found: a release of {amp * 1e3:g} mm at {seed_kmh:g} km/h "
-                              f"{outcome}")  # fmt: skip
+                size = float(outcome.split("about ")[1].split(" mm")[0]) * 1e-3
+                missed.append((seed_kmh, size, f"not found: a release of {amp * 1e3:g} mm "
+                               f"at {seed_kmh:g} km/h {outcome}"))  # fmt: skip
                 continue
             if any(on_branch(b, found[1]) for b in branches):
                 continue
             yield amp, seed_kmh, found
-            if not any(on_branch(b, found[1]) for b in branches):
-                missed.append(f"not found: the cycle of {found[1].amplitude * 1e3:.3g} mm a "
-                              f"release of {amp * 1e3:g} mm settles on at {seed_kmh:g} km/h "
-                              "lies on no branch")  # fmt: skip
-        if settled:
-            break
     if derailed:
         notes.append("releases that left the track: " + ", ".join(derailed))
+
+
+def _covered(branches: list, speed_kmh: float, amplitude: float) -> bool:
+    """Whether a branch has an orbit within 5 km/h and 10 % of this cycle's amplitude."""
+    for b in branches:
+        near = np.abs(b.speed_kmh - speed_kmh) <= 5.0
+        if np.any(near & (np.abs(b.amplitude - amplitude) <= 0.1 * amplitude)):
+            return True
+    return False
 
 
 def bifurcation_family(

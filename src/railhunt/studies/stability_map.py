@@ -96,12 +96,39 @@ def evaluate_radius(item: tuple[int, float], vehicle: Vehicle, cant: float,
             if not res.bracketed:
                 status = STATUS_NO_CRITICAL_SPEED
                 message = "; ".join(m for m in (message, critical_speed_message(res)) if m)
+            elif res.warnings:
+                message = "; ".join([m for m in (message,) if m] + res.warnings)
+        if curve is not None:  # every map point names the first limit of its steady state
+            extra = limit_message(vehicle, curve, row, creep_law)
+            if extra.split("; the linear")[0] in message:
+                extra = extra[len(extra.split("; the linear")[0]):].lstrip("; ")
+            message = "; ".join(m for m in (message, extra) if m)
     except Exception as exc:  # noqa: BLE001 - one bad radius must not end the study
         if interrupted(exc):
             raise KeyboardInterrupt from exc
         status, message = STATUS_FAILED, f"{type(exc).__name__}: {exc}"
     row["status"], row["message"] = status, message
     return row
+
+
+def limit_message(vehicle: Vehicle, curve: Any, row: dict[str, Any], creep_law: str) -> str:
+    """The first limit of the validity envelope the steady-curving state reaches between
+    20 and 800 km/h ("curving limit at X km/h: ..."), and whether the row's linear
+    critical speed lies beyond it; empty when none is reached."""
+    from railhunt.analysis.curving import EquilibriumPath
+    from railhunt.analysis.validity import curving_limit
+    from railhunt.model import Model
+
+    limit = curving_limit(EquilibriumPath(Model(vehicle, creep_law=creep_law), curve),
+                          20.0, 800.0)  # fmt: skip
+    if not limit.reached:
+        return ""
+    text = f"limit reached: {limit.text}"
+    linear = row.get("linear_critical_speed_kmh", math.nan)
+    if math.isfinite(linear) and linear > limit.speed_kmh:
+        text += (f"; the linear critical speed {linear:.1f} km/h lies beyond it (outside the "
+                 "validity envelope)")  # fmt: skip
+    return text
 
 
 def _warm_up() -> None:
