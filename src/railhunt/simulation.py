@@ -98,9 +98,8 @@ class SimulationResult(ResultDisplay):
         """How the run ended in verdict words: ``"ok"``, ``"derailed"`` or ``"blow-up"``
         (:func:`railhunt.analysis.verdicts.ending`)."""
         from railhunt.analysis.verdicts import ending
-        from railhunt.kernel.layout import WHEELSET_Y
 
-        return ending(self.status, self.x[:, list(WHEELSET_Y)])
+        return ending(self.status, self.x)
 
     @property
     def speed_kmh(self) -> float:

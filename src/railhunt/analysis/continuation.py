@@ -402,7 +402,7 @@ def _release(model: Model, shoot: Shooting, speed_kmh: float, amplitude: float,
     route = None if path is None else path.route
     t, x, status, _ = integrate_model(model, speed, 12.0, x0, dt=dt, route=route)
     if status != OK:
-        return ending(STATUS_NAMES[status], x[:, list(WHEELSET_Y)]), None
+        return ending(STATUS_NAMES[status], x), None
     y = x[:, Y_W1]
     tail = y[t > t[-1] - 2.0]
     if np.max(np.abs(tail - x_eq[Y_W1])) < 1e-4:

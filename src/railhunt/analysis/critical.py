@@ -290,7 +290,7 @@ def judge_run(result: object, judgement: Judgement | None = None,
     judgement = judgement or Judgement()
     t, y = np.asarray(result.t), np.asarray(result["y_w1"])
     if result.status != "ok":
-        how = ending(result.status, np.asarray(result.x)[:, list(WHEELSET_Y)])
+        how = ending(result.status, np.asarray(result.x))
         amp = float(np.max(np.abs(y[-50:]))) if y.size else math.nan
         if how == DERAILED:
             return RunVerdict(DERAILED, amp, math.nan, f"derailed: left the track "
@@ -411,7 +411,7 @@ def run_until_verdict(
         tt, xx = np.concatenate(ts), np.concatenate(xs)
         y = xx[:, Y_W1] if reference is None else xx[:, Y_W1] - y_ref
         if code != OK:
-            how = ending(STATUS_NAMES[code], xx[:, list(WHEELSET_Y)])
+            how = ending(STATUS_NAMES[code], xx)
             return how, tt, xx, code, float(np.max(np.abs(y[-50:]))), math.nan, True
         final = tt[-1] - t_exc >= judgement.max_duration - 1e-9
         verdict, amp, rate = judge(tt, y, t_exc, judgement, final=final,

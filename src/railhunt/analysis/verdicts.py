@@ -57,6 +57,9 @@ VERDICTS: dict[str, str] = {
 BLOW_UP_GROWTH = 100.0
 #: Samples over which :data:`BLOW_UP_GROWTH` is measured.
 BLOW_UP_STEPS = 10
+#: ... or when, over the last :data:`BLOW_UP_WINDOW` samples, the increments of a state
+#: change sign at more than this share of them (an oscillation at the step's own scale).
+BLOW_UP_WINDOW, BLOW_UP_FLIPS = 30, 0.4
 
 
 def verdict_help(words: Sequence[str] = tuple(VERDICTS)) -> str:
@@ -83,8 +86,9 @@ def ending(status: str, x: Any, scale: Any = None) -> str:
     str
         ``"ok"`` for a run that reached its end; :data:`BLOW_UP` for a non-finite state,
         a step failure or a derailment reached by growth of more than
-        :data:`BLOW_UP_GROWTH` times within the last :data:`BLOW_UP_STEPS` samples;
-        :data:`DERAILED` otherwise.
+        :data:`BLOW_UP_GROWTH` times within the last :data:`BLOW_UP_STEPS` samples or by an
+        oscillation at the step's own scale (:data:`BLOW_UP_FLIPS`); :data:`DERAILED`
+        otherwise.
     """
     import numpy as np  # here, so that ``--help`` (which prints VERDICTS) loads no numerics
 
@@ -102,5 +106,12 @@ def ending(status: str, x: Any, scale: Any = None) -> str:
         return BLOW_UP
     before = size[max(0, size.size - 1 - BLOW_UP_STEPS)]
     if size[-1] > BLOW_UP_GROWTH * max(before, 1e-12):
+        return BLOW_UP
+    # A step just above the stable one grows slowly, but at the step's own scale: the
+    # increments of some state change sign at most samples (motion of railway dynamics,
+    # below ~100 Hz, changes direction a few times in hundreds of samples).
+    tail = np.diff(xx[-(BLOW_UP_WINDOW + 2):], axis=0)
+    flips = np.count_nonzero(np.diff(np.sign(tail), axis=0) != 0, axis=0)
+    if tail.shape[0] >= 8 and np.max(flips) > BLOW_UP_FLIPS * (tail.shape[0] - 1):
         return BLOW_UP
     return DERAILED
