@@ -11,10 +11,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 from click.testing import CliRunner
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import railhunt
 from railhunt import Curve, Model, SingleDefect, Vehicle
-from railhunt.analysis.critical import Judgement, critical_speed, run_trial
+from railhunt.analysis.critical import Judgement, critical_speed, judge_run, run_trial
 from railhunt.analysis.verdicts import BLOW_UP, DERAILED, VERDICTS, ending
 from railhunt.cli import main
 from railhunt.kernel.integrators import STATUS_NAMES
@@ -161,3 +163,107 @@ def test_the_critical_speed_json_carries_warnings_and_limits():
     assert isinstance(data["warnings"], list) and data["warnings"]
     assert isinstance(data["limits"], list)
     assert re.search(r"undecided|limit reached", " ".join(data["warnings"]))
+
+
+# ------------------------------------------------------------- 2. the validity envelope
+
+
+def test_the_validity_limits_by_hand():
+    from railhunt.analysis.validity import PRUDHOMME_A, check_wheels
+
+    q0 = 50e3
+    Y = np.array([[0.9 * q0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]])
+    Q = np.full((1, 8), q0)
+    Q[0, 3] = 0.3 * q0  # unloaded by 70 %
+    sum_y = np.array([[0.0, 0.0, PRUDHOMME_A + 2 * q0 / 3 + 1.0, 0.0]])
+    limits = {lim.name: lim for lim in check_wheels(Y, Q, sum_y, q0, ["t = 1 s"])}
+    assert limits["Y/Q"].value == pytest.approx(0.9) and limits["Y/Q"].limit == 0.8
+    assert limits["Y/Q"].place == "wheelset 1 left, t = 1 s"
+    assert limits["wheel unloading"].value == pytest.approx(0.7)
+    assert limits["wheel unloading"].place.startswith("wheelset 2 right")
+    assert limits["ΣY"].limit == pytest.approx(10e3 + 2 * q0 / 3)
+    assert limits["ΣY"].place.startswith("wheelset 3")
+    assert "wheel lift" not in limits
+
+
+def test_a_curving_state_far_beyond_the_envelope_says_so():
+    # main: 300 km/h in a 1000 m curve without cant gave the state (a wheel at the 1 %
+    # floor of Q, 1.06 m cant deficiency) with no warning.
+    state = railhunt.curving(PAPER, 300.0, Curve(1000.0, 0.0))
+    names = {lim.name for lim in state.limits}
+    assert {"cant deficiency", "wheel lift", "wheel unloading", "ΣY"} <= names
+    data = state.to_dict()
+    assert data["warnings"] and {d["name"] for d in data["limits"]} == names
+    assert railhunt.curving(PAPER, 100.0, Curve(8000.0, 0.0)).warnings == []
+
+
+def test_a_search_in_a_curve_stops_at_the_first_limit():
+    # main: "stable up to 800 km/h" in a 1000 m curve without cant.
+    res = critical_speed(PAPER, curve=Curve(1000.0, 0.0))
+    assert res.limit_reached and res.limit.speed_kmh == pytest.approx(119.0, abs=1.0)
+    assert res.limit.text.startswith("curving limit at 119 km/h: cant deficiency")
+    assert max(t.speed_kmh for t in res.trials) <= res.limit.last_valid_kmh
+    assert res.warnings[0].startswith("limit reached: curving limit at")
+    text = " ".join(run("critical-speed", "--curve-radius", "1000").output.split())
+    assert "limit reached, curving limit at 119 km/h" in text and "800 km/h" not in text
+
+
+def test_a_simulated_run_lists_the_limits_it_reaches():
+    hunting = railhunt.simulate(PAPER, 350.0, duration=4.0, excitation=SingleDefect())
+    assert "Y/Q" in {lim.name for lim in hunting.limits}
+    assert any(w.startswith("limit reached: Y/Q") for w in hunting.warnings)
+    calm = railhunt.simulate(PAPER, 200.0, duration=4.0, excitation=SingleDefect(0.002))
+    assert calm.limits == [] and calm.warnings == []
+
+
+@pytest.mark.parametrize("name", railhunt.vehicle.files.shipped_vehicles())
+def test_every_shipped_vehicle_has_a_stability_map_that_stops_at_a_stated_limit(name):
+    from railhunt.studies.stability_map import stability_map
+
+    vehicle = railhunt.vehicle.files.load_shipped(name)
+    rows = stability_map(vehicle, [600.0, 8000.0], workers=1).rows
+    for row in rows:
+        assert re.search(r"limit reached: curving limit at \d+ km/h: ", row["message"]), row
+        stopped = float(row["message"].split("curving limit at ")[1].split(" km/h")[0])
+        assert not (row["critical_speed_kmh"] > stopped)  # NaN (not found) or below it
+
+
+# ------------------------------------------- 1. the diagram does not depend on its range
+
+
+@settings(max_examples=40, deadline=None)
+@given(lo=st.floats(50.0, 400.0), span=st.floats(20.0, 600.0), extra=st.floats(0.0, 1500.0),
+       hopf=st.floats(100.0, 900.0))  # fmt: skip
+def test_a_wider_range_releases_at_every_speed_a_narrower_one_does(lo, span, extra, hopf):
+    # The property under "widening a diagram's range never raises its lowest limit cycle":
+    # the wider diagram tries every release speed of the narrower one below its own top
+    # (the top and the speed above the Hopf point are tried by both, or lie inside).
+    from railhunt.analysis.continuation import seed_ladder
+
+    hi = lo + span
+    narrow, wide = seed_ladder(lo, hi, hopf), set(seed_ladder(lo, hi + extra, hopf))
+    on_grid = [v for v in narrow[1:] if v != min(hopf + 10.0, 2.0 * hi)]
+    assert set(on_grid) <= wide
+    assert all(lo - 1e-9 <= v for v in narrow)
+
+
+@pytest.mark.slow
+def test_widening_the_range_to_600_kmh_keeps_the_fold():
+    # main: --to 600 lost the large branch (the release at 600 km/h derails): the lowest
+    # limit cycle became 302.0 km/h instead of 292.8, and the diagram said complete.
+    d = railhunt.bifurcation_diagram(PAPER, (200.0, 600.0))
+    assert d.fold_speed_kmh == pytest.approx(292.8, abs=0.5)
+    assert not d.complete and "Newton failed" in d.message
+
+
+@pytest.mark.slow
+def test_the_large_cycle_a_simulation_hunts_on_is_on_a_branch():
+    # main: with F_u = 1000 N only a 0.74 mm branch was found, while simulate at 300 km/h
+    # hunts on a 9.1 mm cycle.
+    vehicle = PAPER.replace(F_u=1000.0)
+    sim = judge_run(railhunt.simulate(vehicle, 300.0, duration=20.0, excitation=SingleDefect()))
+    d = railhunt.bifurcation_diagram(vehicle, (280.0, 320.0))
+    near = [(a, st) for b in d.branches for s, a, st in zip(b.speed_kmh, b.amplitude,
+                                                            b.stable, strict=True)
+            if abs(s - 300.0) < 2.0]  # fmt: skip
+    assert any(st and abs(a - sim.amplitude) < 0.3e-3 for a, st in near), (sim, near)

@@ -438,7 +438,10 @@ def seed_ladder(lo: float, hi: float, hopf: float, step_kmh: float = 50.0) -> li
     the Hopf point when the top is below it, then down from the top by ``step_kmh`` to
     the bottom of the range."""
     first = [hi] + ([min(hopf + 10.0, 2.0 * hi)] if hopf + 10.0 > hi else [])
-    down = [float(v) for v in np.arange(hi - step_kmh, lo - 1e-9, -step_kmh)]
+    # On a fixed grid (multiples of step_kmh), so that a wider range tries every speed a
+    # narrower one tries: widening a diagram's range cannot lose its lowest limit cycle.
+    top = step_kmh * math.ceil(hi / step_kmh - 1e-9) - step_kmh
+    down = [float(v) for v in np.arange(top, lo - 1e-9, -step_kmh)]
     return first + [v for v in down if v not in first]
 
 
@@ -462,8 +465,9 @@ def _seed_releases(model: Model, shoot: Shooting, path: EquilibriumPath | None,
                 continue
             if found is None:
                 size = float(outcome.split("about ")[1].split(" mm")[0]) * 1e-3
-                missed.append((seed_kmh, size, f"not found: a release of {amp * 1e3:g} mm "
-                               f"at {seed_kmh:g} km/h {outcome}"))  # fmt: skip
+                if not any(v == seed_kmh for v, _, _ in missed):  # one sentence a speed
+                    missed.append((seed_kmh, size, f"not found: a release of "
+                                   f"{amp * 1e3:g} mm at {seed_kmh:g} km/h {outcome}"))
                 continue
             if any(on_branch(b, found[1]) for b in branches):
                 continue

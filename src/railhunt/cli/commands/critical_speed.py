@@ -187,7 +187,17 @@ def critical_speed_command(
             curve=curve,
         )
         on_trial(None)
-        linear = linear_critical_speed(vehicle, curve=curve)
+        limit = getattr(result, "limit", None)
+        top = 1000.0  # in a curve, the linear search stops at the first curving limit too
+        if limit is not None and limit.reached:
+            top = limit.last_valid_kmh if limit.last_valid_kmh == limit.last_valid_kmh else 0.0
+        if top > 21.0:
+            linear = linear_critical_speed(vehicle, curve=curve, max_kmh=top)
+        else:
+            from railhunt.analysis.linear import LinearCriticalSpeed
+
+            linear = LinearCriticalSpeed(float("nan"), float("nan"), complex(float("nan")),
+                                         False)  # fmt: skip
 
     if as_json:
         data = _critical_json(vehicle, excitation, tol_kmh, result, linear)
