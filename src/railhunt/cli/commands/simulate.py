@@ -221,6 +221,8 @@ def simulate_command(
         print_run_in_curve(result, vehicle, curve)
     if irregular:
         _print_criterion(result, vehicle)
+    for warning in result.warnings:
+        click.echo(f"warning:    {warning}")
     if csv_file is not None:
         with user_input("cannot write --csv: "):
             result.to_csv(csv_file)
