@@ -34,7 +34,6 @@ from typing import Any
 import numpy as np
 
 from railhunt.kernel.contact import wheel_geometry
-from railhunt.kernel.layout import N_DOF, WHEELSET_Y
 from railhunt.kernel.track import alignment
 
 #: Nadal's limit of the derailment quotient (EN 14363, curves of R >= 250 m).
@@ -53,8 +52,11 @@ BUMP_STOP_TRAVEL = 0.040
 #: The names of the limits, as :attr:`Limit.name` gives them.
 LIMIT_NAMES = ("Y/Q", "wheel unloading", "wheel lift", "ΣY", "cant deficiency", "bump stop",
                "flange clearance")  # fmt: skip
-_WHEELS = tuple(f"wheelset {j + 1} {side}" for j in range(len(WHEELSET_Y))
-                for side in ("left", "right"))  # fmt: skip
+
+
+def _wheel_names(n_wheelsets: int) -> tuple[str, ...]:
+    return tuple(f"wheelset {j + 1} {side}" for j in range(n_wheelsets)
+                 for side in ("left", "right"))  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -139,6 +141,7 @@ def check_wheels(Y: np.ndarray, Q: np.ndarray, sum_Y: np.ndarray, q0: float,
     Y, Q, sum_Y = (np.atleast_2d(np.asarray(a, dtype=float)) for a in (Y, Q, sum_Y))
     where = where or [f"row {i}" for i in range(Y.shape[0])]
     out: list[Limit] = []
+    _WHEELS = _wheel_names(sum_Y.shape[1])  # noqa: N806 (a table of names)
     yq = Y / Q
     if np.nanmax(yq) > YQ_LIMIT:
         value, wheel, row = _worst(yq, _WHEELS)
@@ -185,9 +188,10 @@ def check_motion(x: np.ndarray, model: Any, where: list[str] | None = None,
     where = where or [f"row {i}" for i in range(x.shape[0])]
     out: list[Limit] = []
     system = model.system()
+    n_dof = system.linear.shape[0]  # the model's own layout: coordinates first
     if system.stop_rows.shape[0]:
         gap = system.stop[:, 0]
-        q = x[:, :N_DOF] if geometry is None else x[:, :N_DOF] + geometry[:, :N_DOF]
+        q = x[:, :n_dof] if geometry is None else x[:, :n_dof] + geometry[:, :n_dof]
         travel = np.abs(q @ system.stop_rows.T)
         limit = gap + BUMP_STOP_TRAVEL
         over = travel - limit[None, :]
@@ -196,7 +200,7 @@ def check_motion(x: np.ndarray, model: Any, where: list[str] | None = None,
             out.append(Limit("bump stop", float(limit[k]), float(travel[row, k]), "m",
                              f"{'front' if k == 0 else 'rear'} bogie to car body, "
                              f"{where[row]}", "railhunt"))  # fmt: skip
-    ys = x[:, list(WHEELSET_Y)]
+    ys = x[:, system.wheelsets[:, 0]]
     if track_y is not None:
         ys = ys - track_y
     clearance = flange_clearance(model)
@@ -227,7 +231,7 @@ def curving_limits(result: Any, model: Any) -> list[Limit]:
     from railhunt.units import kmh_to_ms
 
     v, system = model.args(kmh_to_ms(result.speed_kmh), route=result.curve.steady_route())
-    geo = curve_geometry(0.0, v, system)[None, :N_DOF]
+    geo = curve_geometry(0.0, v, system)[None, :system.linear.shape[0]]
     out += check_motion(result.state, model, [where], geometry=geo)
     return out
 
@@ -239,7 +243,7 @@ def run_limits(result: Any, model: Any, excitation: object = None) -> list[Limit
     if t.size == 0:
         return []
     where = [f"t = {ti:.3f} s" for ti in t]
-    nw = len(WHEELSET_Y)
+    nw = model.system().wheelsets.shape[0]
     ws = [f"w{j + 1}" for j in range(nw)]
     q0 = float(model.vehicle.W * model.vehicle.g / 2.0)
     out: list[Limit] = []
