@@ -5,22 +5,21 @@ field uses to judge running safety and inside the range the model is built for. 
 check gives a :class:`Limit` (the limit, the value, the place); a result carries them as
 ``limits`` and, in words, as ``warnings``.
 
-=======================  =====================================================  ============
-limit                    value                                                   source
-=======================  =====================================================  ============
-derailment quotient      ``Y/Q <= 0.8`` on every wheel (Nadal)                   EN 14363
-wheel unloading          ``dQ/Q0 <= 0.6``                                        EN 14363
-wheel lift               ``Q`` at the model's 1 % floor of ``Q0``: the wheel      railhunt
-                         has lifted, the contact forces are no longer modelled
-track shifting           ``|sum Y| <= 10 kN + 2 Q0 / 3`` (Prud'homme, alpha = 1)   EN 14363
-cant deficiency          ``|I| <= 0.165 m``: railhunt's curving model (small      railhunt
-                         car body roll, quasi-static load transfer) is meant for
-                         the cant deficiencies of non-tilting trains
-bump stop                car body to bogie beyond free play + 40 mm of rubber     railhunt
-flange clearance         a wheelset beyond the lateral displacement at which      railhunt
-                         its contact angle reaches the flange angle (the wheel
-                         climbs its flange: in a curve a derailment)
-=======================  =====================================================  ============
+| limit | value | source |
+|---|---|---|
+| derailment quotient | ``Y/Q <= 0.8`` on every wheel (Nadal) | EN 14363 |
+| wheel unloading | ``dQ/Q0 <= 0.6`` | EN 14363 |
+| wheel lift | ``Q`` at the model's 1 % floor of ``Q0`` (a lifted wheel) | railhunt |
+| track shifting | ``abs(sum Y) <= 10 kN + 2 Q0 / 3`` (Prud'homme, alpha = 1) | EN 14363 |
+| cant deficiency | ``abs(I) <= 0.165 m`` (the model's range, see below) | railhunt |
+| bump stop | car body to bogie beyond the free play plus 40 mm of rubber | railhunt |
+| flange clearance | a wheelset past its flange (see below) | railhunt |
+
+The cant deficiency limit is the range railhunt's curving model (small car body roll,
+quasi-static load transfer) is meant for, that of non-tilting trains. The flange clearance
+is the lateral displacement at which the contact angle reaches the flange angle: beyond it
+the wheel climbs its flange (in a curve, a derailment). A lifted wheel's contact forces
+are no longer modelled.
 
 ``Q0`` is the static wheel load ``N = W g / 2``.
 """
