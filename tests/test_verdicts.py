@@ -20,7 +20,6 @@ from railhunt.analysis.critical import Judgement, critical_speed, judge_run, run
 from railhunt.analysis.verdicts import BLOW_UP, DERAILED, VERDICTS, ending
 from railhunt.cli import main
 from railhunt.kernel.integrators import STATUS_NAMES
-from railhunt.kernel.layout import N_STATE, WHEELSET_Y
 from railhunt.simulation import integrate_model
 from railhunt.stepsize import stable_step, stable_step_for
 
@@ -48,8 +47,8 @@ def test_a_step_above_the_stable_one_blows_up_and_one_below_does_not():
     speed = 300 / 3.6
     h = stable_step(model, speed)
     assert 4e-3 < h < 6e-3  # |lambda| = 565 1/s at 300 km/h
-    x0 = np.zeros(N_STATE)
-    x0[list(WHEELSET_Y)] = 1e-3
+    x0 = np.zeros(model.layout.n_state)
+    x0[list(model.layout.wheelset_y)] = 1e-3
     for factor in (1.05, 1.3):  # main called each of these runs "derailed"
         t, x, code, _ = integrate_model(model, speed, 2.0, x0, dt=factor * h)
         assert ending(STATUS_NAMES[code], x) == BLOW_UP, factor

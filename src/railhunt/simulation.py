@@ -14,15 +14,7 @@ import numpy as np
 from railhunt.channels import CHANNEL_UNITS, derived_channels
 from railhunt.curve import Curve
 from railhunt.kernel import integrators
-from railhunt.kernel.layout import (
-    DAMPER_NAMES,
-    FORCES,
-    N_DAMPER,
-    N_DOF,
-    N_STATE,
-    STATE_NAMES,
-    DamperParam,
-)
+from railhunt.kernel.layout import LAYOUT, N_DAMPER, N_STATE, DamperParam, StateLayout
 from railhunt.model import Model
 from railhunt.results import Columns, ResultDisplay, Row
 from railhunt.track import InitialDisplacement, SampledTrack, SingleDefect, check_excitation
@@ -68,6 +60,9 @@ class SimulationResult(ResultDisplay):
         Derived channels (:mod:`railhunt.channels`): sums of guiding forces ``SY_w1..4``
         (N) and bogie frame accelerations ``ddy_t1``, ``ddy_t2`` (m/s^2), ``ddpsi_t1``,
         ``ddpsi_t2`` (rad/s^2).
+    layout : StateLayout
+        The vehicle's state layout (names of the states and dampers); default: the
+        paper's vehicle.
     """
 
     t: np.ndarray
@@ -79,6 +74,7 @@ class SimulationResult(ResultDisplay):
     excitation_end: float = 0.0
     stats: dict = field(default_factory=dict)
     derived: dict = field(default_factory=dict)
+    layout: StateLayout = LAYOUT
     limits: list = field(default_factory=list)
 
     @property
@@ -115,13 +111,15 @@ class SimulationResult(ResultDisplay):
     def channel_names(self) -> tuple[str, ...]:
         """All channel names: states (``y_w1``, ``dy_w1``, ``F_d1``, ...), ``v_d1..v_d4``
         and the derived channels (``SY_w1``, ..., ``ddy_t1``, ...)."""
-        return STATE_NAMES + tuple("v_" + n for n in DAMPER_NAMES) + tuple(self.derived)
+        lay = self.layout
+        return lay.state_names + tuple("v_" + n for n in lay.dampers) + tuple(self.derived)
 
     def __getitem__(self, name: str) -> np.ndarray:
-        if name in STATE_NAMES:
-            return self.x[:, STATE_NAMES.index(name)]
-        if name.startswith("v_") and name[2:] in DAMPER_NAMES:
-            return self.damper_velocity[:, DAMPER_NAMES.index(name[2:])]
+        names, dampers = self.layout.state_names, self.layout.dampers
+        if name in names:
+            return self.x[:, names.index(name)]
+        if name.startswith("v_") and name[2:] in dampers:
+            return self.damper_velocity[:, dampers.index(name[2:])]
         if name in self.derived:
             return self.derived[name]
         raise KeyError(
@@ -181,12 +179,15 @@ class SimulationResult(ResultDisplay):
 
 
 def _initial_state(model: Model, excitation: object, x0: np.ndarray | None) -> np.ndarray:
-    x = np.zeros(N_STATE) if x0 is None else np.array(x0, dtype=np.float64)
-    if x.shape != (N_STATE,):
-        raise ValueError(f"x0 has shape {x.shape}: must be ({N_STATE},)")
+    n = model.layout.n_state
+    x = np.zeros(n) if x0 is None else np.array(x0, dtype=np.float64)
+    if x.shape != (n,):
+        raise ValueError(f"x0 has shape {x.shape}: must be ({n},)")
     if isinstance(excitation, InitialDisplacement):
+        ys = model.layout.wheelset_y
         for w in excitation.wheelsets:
-            x[STATE_NAMES.index(f"y_w{w}")] += excitation.amplitude
+            if w <= len(ys):
+                x[ys[w - 1]] += excitation.amplitude
     return x
 
 
@@ -197,9 +198,9 @@ def excitation_end_time(model: Model, excitation: object, speed: float) -> float
     return 0.0
 
 
-def default_atol() -> np.ndarray:
+def default_atol(layout: StateLayout = LAYOUT) -> np.ndarray:
     """Absolute tolerances per state for the adaptive integrator (state units)."""
-    return integrators.default_atol(N_DOF, N_DAMPER)
+    return integrators.default_atol(layout.n_dof, layout.n_damper)
 
 
 class StiffDamperError(ValueError):
@@ -216,7 +217,7 @@ def model_step(model: Model, speed: float, safety: float = 0.6, dt_max: float = 
     ``safety`` over the largest eigenvalue modulus of the Jacobian of the coordinates and
     rates with the damper forces held (their own rows and columns left out), capped at
     ``dt_max``."""
-    n = 2 * N_DOF
+    n = 2 * model.layout.n_dof
     rate = float(np.max(np.abs(np.linalg.eigvals(model.jacobian(speed)[:n, :n]))))
     return min(dt_max, safety / rate)
 
@@ -241,8 +242,8 @@ def auto_step(model: Model, speed: float, safety: float = 0.6, dt_max: float = 1
     rate = float(np.max(np.abs(np.linalg.eigvals(model.jacobian(speed)))))
     d = model.dpar
     k_d = d[:, DamperParam.K_D]
-    rate_1 = float(np.max(k_d / d[:, DamperParam.C_D1]))
-    rate_2 = float(np.max(k_d / d[:, DamperParam.C_D2]))
+    rate_1 = float(np.max(k_d / d[:, DamperParam.C_D1], initial=0.0))
+    rate_2 = float(np.max(k_d / d[:, DamperParam.C_D2], initial=0.0))
     dt = min(dt_max, safety / max(rate, rate_1, rate_2))
     rest = model_step(model, speed, safety, dt_max)
     if dt < rest / STIFF_RATIO:
@@ -289,6 +290,15 @@ class OutputTooLargeError(ValueError):
 #: Bytes per stored output row: the time, 38 states, 4 damper velocities, 32 derived
 #: channels, and the working arrays the derived channels are computed in.
 ROW_BYTES = 8 * (1 + N_STATE + N_DAMPER + 32 + 24)
+
+
+def row_bytes(layout: StateLayout = LAYOUT) -> int:
+    """:data:`ROW_BYTES` of a layout: the time, its states, its damper velocities, the
+    derived channels (7 per wheelset, 2 per bogie frame) and their working arrays."""
+    n_ws = len(layout.wheelsets)
+    n_frames = sum(1 for b in layout.bodies if not b.is_wheelset and b.tag.startswith("t"))
+    derived = 7 * n_ws + 2 * n_frames
+    return 8 * (1 + layout.n_state + layout.n_damper + derived + 5 * n_ws + 2 * n_frames)
 #: Largest share of the available memory a run's histories may take.
 MEMORY_SHARE = 0.5
 
@@ -321,8 +331,9 @@ def memory_available() -> float | None:
 
 
 def check_output_size(duration: float, dt: float, output_dt: float | None,
-                      method: str) -> None:  # fmt: skip
-    """Refuse a run whose histories would not fit in memory, before it allocates them.
+                      method: str, layout: StateLayout = LAYOUT) -> None:  # fmt: skip
+    """Refuse a run whose histories would not fit in memory, before it allocates them
+    (``layout``: the vehicle's states, default the paper's vehicle).
 
     Raises
     ------
@@ -331,12 +342,13 @@ def check_output_size(duration: float, dt: float, output_dt: float | None,
     """
     available = memory_available()
     rows = output_rows(duration, dt, output_dt, method)
-    nbytes = float(rows) * ROW_BYTES
+    per_row = row_bytes(layout)
+    nbytes = float(rows) * per_row
     if available is None or nbytes <= MEMORY_SHARE * available:
         return
     fits = None
     for candidate in (k * 10.0**e for e in range(-3, 4) for k in (1.0, 2.0, 5.0)):
-        if candidate >= dt and output_rows(duration, dt, candidate, method) * ROW_BYTES <= \
+        if candidate >= dt and output_rows(duration, dt, candidate, method) * per_row <= \
                 0.5 * MEMORY_SHARE * available:  # fmt: skip
             fits = candidate
             break
@@ -397,7 +409,7 @@ def simulate(
     output_dt: float | None = None,
     rtol: float = 1e-6,
     x0: np.ndarray | None = None,
-    creep_law: str = "heuristic",
+    creep_law: str | None = None,
     y_limit: float = Y_LIMIT,
     model: Model | None = None,
     curve: Curve | None = None,
@@ -468,18 +480,19 @@ def simulate(
         from railhunt.stepsize import check_step
 
         check_step(model, speed, dt)
-    check_output_size(duration, dt, output_dt, method)
+    check_output_size(duration, dt, output_dt, method, model.layout)
     route = None if curve is None else curve.route()
     t, x, code, stats = integrate_model(
         model, speed, duration, x_init, excitation=excitation, method=method, dt=dt,
         output_dt=output_dt, rtol=rtol, y_limit=y_limit, route=route,
     )  # fmt: skip
-    vd = model.damper_velocities(x[:, FORCES])
+    vd = model.damper_velocities(x[:, model.layout.forces])
     result = SimulationResult(
         t=t, x=x, speed=speed, status=integrators.STATUS_NAMES[code],
         message=integrators.status_message(code, t[-1], y_limit), damper_velocity=vd,
         excitation_end=excitation_end_time(model, excitation, speed), stats=stats,
-        derived=derived_channels(t, x, *model.args(speed, excitation, route)),
+        derived=derived_channels(t, x, *model.args(speed, excitation, route), model.layout),
+        layout=model.layout,
     )  # fmt: skip
     from railhunt.analysis.validity import run_limits
 
