@@ -8,7 +8,7 @@ check gives a :class:`Limit` (the limit, the value, the place); a result carries
 | limit | value | source |
 |---|---|---|
 | derailment quotient | ``Y/Q <= 0.8`` on every wheel (Nadal) | EN 14363 |
-| wheel unloading | ``dQ/Q0 <= 0.6`` | EN 14363 |
+| wheel unloading | ``dQ/Q0 <= 0.6`` (``Q0``: the axle's mean wheel load) | EN 14363 |
 | wheel lift | ``Q`` at the model's 1 % floor of ``Q0`` (a lifted wheel) | railhunt |
 | track shifting | ``abs(sum Y) <= 10 kN + 2 Q0 / 3`` (Prud'homme, alpha = 1) | EN 14363 |
 | cant deficiency | ``abs(I) <= 0.165 m`` (the model's range, see below) | railhunt |
@@ -104,13 +104,16 @@ class Limit:
 def flange_clearance(model: Any) -> float:
     """Lateral displacement (m) at which the wheel nearer its flange reaches the flange
     angle: the first displacement, scanning 0 to 25 mm in 0.1 mm, where its contact angle
-    is within 1 % of its largest value (both directions; the smaller)."""
+    is within 1 % of its largest value (both directions; the smaller); ``inf`` when the
+    contact angle does not grow (conical wheels: no flange in the geometry)."""
     wr = model.wheel_rail_vector()
     ys = np.arange(0.0, 0.0251, 1e-4)
     out = math.inf
     for sign, side in ((1.0, 2), (-1.0, 3)):
         delta = np.array([wheel_geometry(sign * y, wr)[side] for y in ys])
         top = float(np.max(delta))
+        if top <= 1.01 * abs(float(delta[0])) + 1e-9:
+            continue  # the contact angle does not grow (a conical wheel): no flange modelled
         out = min(out, float(ys[np.argmax(delta >= 0.99 * top)]))
     return out
 
@@ -145,7 +148,10 @@ def check_wheels(Y: np.ndarray, Q: np.ndarray, sum_Y: np.ndarray, q0: float,
     if np.nanmax(yq) > YQ_LIMIT:
         value, wheel, row = _worst(yq, _WHEELS)
         out.append(Limit("Y/Q", YQ_LIMIT, value, "1", f"{wheel}, {where[row]}", "EN 14363"))
-    unloading = (q0 - Q) / q0
+    # Unloading against each axle's mean wheel load (its quasi-static load without the
+    # transfer between its wheels; the static load on straight track).
+    mean = 0.5 * (Q[:, 0::2] + Q[:, 1::2])
+    unloading = (np.repeat(mean, 2, axis=1) - Q) / np.repeat(mean, 2, axis=1)
     if np.nanmax(unloading) > UNLOADING_LIMIT:
         value, wheel, row = _worst(unloading, _WHEELS)
         out.append(Limit("wheel unloading", UNLOADING_LIMIT, value, "1",
@@ -210,6 +216,14 @@ def check_motion(x: np.ndarray, model: Any, where: list[str] | None = None,
     return out
 
 
+def static_wheel_load(model: Any) -> float:
+    """The static wheel load ``Q0`` (N) of the model's wheel/rail forces (``N`` of the
+    kernel's wheel/rail vector: ``W g / 2`` for the paper's vehicle)."""
+    from railhunt.kernel.layout import WR
+
+    return float(model.wheel_rail_vector()[WR.N])
+
+
 def check_cant_deficiency(cant_deficiency: float, where: str) -> list[Limit]:
     """The cant deficiency (m) against :data:`CANT_DEFICIENCY_LIMIT`."""
     if abs(cant_deficiency) > CANT_DEFICIENCY_LIMIT:
@@ -222,7 +236,7 @@ def curving_limits(result: Any, model: Any) -> list[Limit]:
     """Every limit a steady-curving state (:class:`~railhunt.analysis.curving.CurvingResult`)
     reaches."""
     where = f"{result.speed_kmh:g} km/h in the {result.curve.radius:g} m curve"
-    q0 = float(model.vehicle.W * model.vehicle.g / 2.0)
+    q0 = static_wheel_load(model)
     out = check_wheels(result.Y.ravel()[None, :], result.Q.ravel()[None, :],
                        result.sum_Y[None, :], q0, [where])  # fmt: skip
     out += check_cant_deficiency(result.cant_deficiency, where)
@@ -244,7 +258,7 @@ def run_limits(result: Any, model: Any, excitation: object = None) -> list[Limit
     where = [f"t = {ti:.3f} s" for ti in t]
     nw = model.system().wheelsets.shape[0]
     ws = [f"w{j + 1}" for j in range(nw)]
-    q0 = float(model.vehicle.W * model.vehicle.g / 2.0)
+    q0 = static_wheel_load(model)
     out: list[Limit] = []
     names = set(result.derived)
     if {f"Y_{w}{s}" for w in ws for s in "LR"} <= names:
