@@ -57,8 +57,10 @@ def test_a_step_above_the_stable_one_blows_up_and_one_below_does_not():
 
 
 def test_a_physical_derailment_stays_a_derailment():
+    # A flange climb in a curve: main called it "hunting: left the track".
     run_ = railhunt.simulate(PAPER, 250.0, duration=10.0, curve=Curve(300.0, 0.0, start=10.0))
     assert run_.status == "derailed" and run_.ending == DERAILED
+    assert judge_run(run_, two_sided=True).verdict == DERAILED
 
 
 def test_a_dt_above_the_stable_step_is_refused_with_the_number():
