@@ -131,9 +131,15 @@ def test_an_excitation_of_zero_size_is_refused():
 def test_a_slow_growth_near_the_hopf_point_is_not_a_steady_cycle():
     # main: a 0.01 mm defect at 441 km/h (Hopf point 441.3 km/h) grew at +0.003 1/s and
     # passed the steady-cycle test after 9 s ("hunting", decided).
+    # Now it runs to the end (60 s), where it decays at the hunting eigenvalue's own rate
+    # (-0.005 1/s) inside the linear range of the (linearly stable) centred running.
     trial = run_trial(Model(PAPER), 441.0, SingleDefect(amplitude=1e-5), Judgement(), dt=1e-3)
-    assert not (trial.verdict == "hunting" and trial.decided)
-    assert trial.duration > 60.0
+    assert trial.verdict == "stable" and not trial.decided
+    assert trial.duration > 60.0 and trial.growth_rate == pytest.approx(-0.0051, abs=0.001)
+    # Just above the Hopf point the small motion grows at the linear rate: hunting, but
+    # not a steady cycle (main: a "steady cycle" of 0.017 mm at 442 km/h).
+    above = run_trial(Model(PAPER), 442.0, SingleDefect(amplitude=1e-5), Judgement(), dt=1e-3)
+    assert above.verdict == "hunting" and not above.decided and above.growth_rate > 0
 
 
 def test_a_start_beyond_20_mm_is_refused():

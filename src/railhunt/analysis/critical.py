@@ -200,6 +200,7 @@ def swing_peaks(t: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def judge(
     t: np.ndarray, y: np.ndarray, t_start: float, judgement: Judgement, final: bool = False,
     two_sided: bool = False, linear_rate: float | None = None,
+    equilibrium_rate: float | None = None,
 ) -> tuple[str | None, float, float]:  # fmt: skip
     """Verdict on a displacement history after ``t_start``.
 
@@ -209,9 +210,13 @@ def judge(
     peaks of ``|y|`` (:func:`envelope_peaks`).
 
     ``linear_rate`` is the real part of the least damped oscillatory eigenvalue at the
-    run's speed (1/s): when it lies within ``settle_rate`` of zero (near the Hopf point)
-    an envelope below :data:`LINEAR_RANGE` is the slow linear motion, not a steady cycle,
-    and the run must go on.
+    run's speed (1/s): when it lies within ``settle_rate`` of zero (near the Hopf point),
+    or of the envelope's own rate, an envelope below :data:`LINEAR_RANGE` is the linear
+    motion, not a steady cycle, and the run must go on. ``equilibrium_rate`` is the
+    largest real part of all the eigenvalues there: when it is negative, a motion still
+    decaying below
+    :data:`LINEAR_RANGE` at ``final`` dies out (it is inside the linear range of a stable
+    equilibrium) and is judged stable.
 
     Returns
     -------
@@ -238,12 +243,22 @@ def judge(
     if np.count_nonzero(win) >= 4 and tt[-1] - t_start >= judgement.settle_window:
         rate = float(np.polyfit(pt[win], np.log(pa[win]), 1)[0])
         spread = (pa[win].max() - pa[win].min()) / pa[win].mean()
-        near_hopf = (linear_rate is not None and abs(linear_rate) < judgement.settle_rate
-                     and amplitude < LINEAR_RANGE)  # fmt: skip
+        # Inside the linear range an envelope that changes at the linear motion's own rate
+        # (or, near the Hopf point, at almost none) is that motion, not a steady cycle.
+        near_hopf = (linear_rate is not None and math.isfinite(linear_rate)
+                     and amplitude < LINEAR_RANGE
+                     and (abs(linear_rate) < judgement.settle_rate
+                          or abs(rate - linear_rate) < judgement.settle_rate))  # fmt: skip
         if abs(rate) < judgement.settle_rate and spread < 0.05 and not near_hopf:
             return HUNTING, float(pa[win][-1]), rate
     if final:
-        return (HUNTING if (math.isfinite(rate) and rate > 0) else UNDECIDED), amplitude, rate
+        if math.isfinite(rate) and rate > 0:
+            return HUNTING, amplitude, rate
+        linear_decay = (equilibrium_rate is not None and equilibrium_rate < 0
+                        and amplitude < LINEAR_RANGE)  # fmt: skip
+        if math.isfinite(rate) and rate < 0 and linear_decay:
+            return STABLE, amplitude, rate
+        return UNDECIDED, amplitude, rate
     return None, amplitude, rate
 
 
@@ -401,7 +416,9 @@ def run_until_verdict(
         judgement = replace(judgement, decay_amplitude=DECAY_SHARE * size)
     t0, x_start = 0.0, np.asarray(x0, dtype=float)
     duration = t_exc + judgement.chunk
-    linear_rate = least_damped_rate(model, speed, None if reference is None else x0, route)
+    linear_rate, equilibrium_rate = least_damped_rate(model, speed,
+                                                      None if reference is None else x0,
+                                                      route)  # fmt: skip
     ts: list[np.ndarray] = []
     xs: list[np.ndarray] = []
     while True:
@@ -419,20 +436,22 @@ def run_until_verdict(
         final = tt[-1] - t_exc >= judgement.max_duration - 1e-9
         verdict, amp, rate = judge(tt, y, t_exc, judgement, final=final,
                                    two_sided=reference is not None,
-                                   linear_rate=linear_rate)  # fmt: skip
+                                   linear_rate=linear_rate,
+                                   equilibrium_rate=equilibrium_rate)  # fmt: skip
         if verdict is not None:
             return verdict, tt, xx, code, amp, rate, not final
         t0, x_start, duration = float(t[-1]), x[-1].copy(), judgement.chunk
 
 
 def least_damped_rate(model: Model, speed: float, state: np.ndarray | None = None,
-                      route: np.ndarray | None = None) -> float:  # fmt: skip
-    """Real part (1/s) of the least damped oscillatory eigenvalue of the model linearised
-    at ``state`` (default the centred state) at ``speed`` (m/s); NaN if none oscillates."""
+                      route: np.ndarray | None = None) -> tuple[float, float]:  # fmt: skip
+    """Real parts (1/s) of the least damped oscillatory eigenvalue (NaN if none oscillates)
+    and of the least damped eigenvalue of all, of the model linearised at ``state``
+    (default the centred state) at ``speed`` (m/s)."""
     jac = model.jacobian(speed) if state is None else model.jacobian(speed, state, route=route)
     w = np.linalg.eigvals(jac)
-    w = w[w.imag > 1e-6]
-    return float(np.max(w.real)) if w.size else math.nan
+    osc = w[w.imag > 1e-6]
+    return (float(np.max(osc.real)) if osc.size else math.nan), float(np.max(w.real))
 
 
 def trial_reason(verdict: str, amplitude: float, rate: float, decided: bool,

@@ -238,9 +238,10 @@ def critical_speed_command(
     console = stdout_console()
     console.print(table)
     if any(_trial_note(t) == STEADY for t in result.trials):
-        console.print(f"{STEADY}: hunting on a limit cycle, the envelope stationary within "
-                      "±0.01 1/s over 3 s (a small negative growth is still a cycle); "
-                      "undecided: the verdict is the envelope's trend after 60 s")  # fmt: skip
+        from railhunt.analysis.verdicts import STEADY_CYCLE, VERDICTS
+
+        console.print(f"{STEADY}: {VERDICTS[STEADY_CYCLE]} trend at the end: the verdict was "
+                      "taken on the envelope's trend when the 60 s ran out")  # fmt: skip
     console.print(_nonlinear_line(result, tol_kmh))
     for warning in getattr(result, "warnings", []):
         console.print(f"[yellow]warning: {warning}[/yellow]")
@@ -263,7 +264,7 @@ def _trial_note(trial: Any) -> str:
     if trial.status != "ok":
         return trial.status
     if not trial.decided:
-        return "undecided"
+        return "trend at the end"
     return STEADY if trial.verdict == "hunting" else ""
 
 
