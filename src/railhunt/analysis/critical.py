@@ -2,9 +2,10 @@
 
 Each trial speed is simulated with a single lateral track defect followed by ideal track,
 and judged from the envelope of the leading wheelset's lateral displacement after the
-defect: *stable* (decays to the centred equilibrium) or *hunting* (settles on a limit
-cycle, or derails). A run is extended chunk by chunk until its envelope is clearly decayed
-or clearly stationary, so that a slowly decaying or slowly growing run is not misjudged
+defect: *stable* (the motion died out) or not (*hunting*, *undecided*, *derailed* or
+*blow-up*; the words are defined in :mod:`railhunt.analysis.verdicts`). A run is
+extended chunk by chunk until its envelope is clearly decayed or clearly stationary, so
+that a slowly decaying or slowly growing run is not misjudged
 at the end of a fixed window. The search starts at 300 km/h, steps by 10 km/h until the
 verdict changes, then bisects to 1 km/h; the critical speed is the highest stable speed.
 """

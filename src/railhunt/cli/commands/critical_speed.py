@@ -122,10 +122,11 @@ def critical_speed_command(
     \b
     Nonlinear critical speed (the paper's method): at each trial speed the
     vehicle runs over one lateral track defect and the leading wheelset's
-    motion is judged 'stable' (decays back to the centre line) or 'hunting'
-    (settles on a limit cycle, or derails). Starting at --start the speed is
-    stepped by --step until the verdict changes, then bisected to --tol. The
-    result is the highest stable speed (km/h).
+    motion is judged 'stable' (it died out) or not: 'hunting', 'undecided',
+    'derailed' or 'blow-up' (the verdicts are defined below). Starting at
+    --start the speed is stepped by --step until the verdict changes, then
+    bisected to --tol. The result is the highest stable speed (km/h); in a
+    curve the search stops at the first limit of the validity envelope.
 
     \b
     Linear critical speed: where the least damped eigenvalue of the

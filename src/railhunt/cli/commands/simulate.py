@@ -133,7 +133,9 @@ def simulate_command(
     followed by ideal track; with --initial-displacement it instead starts
     with its wheelsets offset on ideal track. Below the critical speed the
     motion decays back to the centre line; above it the leading wheelset
-    settles on a hunting limit cycle (or derails beyond 25 mm).
+    settles on a hunting limit cycle, or it derails (beyond 25 mm); the
+    verdict line says which, and tells a numerical blow-up from a
+    derailment. Warnings name every limit of the validity envelope reached.
 
     \b
     With --spectrum NAME (or --irregularity FILE) it runs over an irregular
