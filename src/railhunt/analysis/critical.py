@@ -19,6 +19,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from railhunt.analysis.curving import EquilibriumPath
+from railhunt.analysis.modes import least_damped_rate
 from railhunt.analysis.search import bracket_and_bisect, check_search
 from railhunt.analysis.validity import curving_limit
 from railhunt.analysis.verdicts import (
@@ -28,6 +29,7 @@ from railhunt.analysis.verdicts import (
     STABLE,
     UNDECIDED,
     ending,
+    trial_reason,
 )
 from railhunt.curve import Curve
 from railhunt.kernel.integrators import OK, STATUS_NAMES
@@ -257,10 +259,25 @@ def judge(
             return HUNTING, amplitude, rate
         linear_decay = (equilibrium_rate is not None and equilibrium_rate < 0
                         and amplitude < LINEAR_RANGE)  # fmt: skip
+        if not math.isfinite(rate):  # no oscillation to fit: the trend of max |y| instead
+            rate = _drift_rate(tt, yy, judgement.settle_window)
         if math.isfinite(rate) and rate < 0 and linear_decay:
             return STABLE, amplitude, rate
         return UNDECIDED, amplitude, rate
     return None, amplitude, rate
+
+
+def _drift_rate(t: np.ndarray, y: np.ndarray, window: float) -> float:
+    """Log slope (1/s) of ``max |y|`` between the last second and the second ``window``
+    earlier, for a motion that does not oscillate; NaN when the record is too short."""
+    now = t >= t[-1] - 1.0
+    before = (t >= t[-1] - window - 1.0) & (t < t[-1] - window)
+    if not before.any():
+        return math.nan
+    a_now, a_before = float(np.max(np.abs(y[now]))), float(np.max(np.abs(y[before])))
+    if a_now <= 0 or a_before <= 0:
+        return math.nan
+    return math.log(a_now / a_before) / window
 
 
 @dataclass(frozen=True)
@@ -442,35 +459,6 @@ def run_until_verdict(
         if verdict is not None:
             return verdict, tt, xx, code, amp, rate, not final
         t0, x_start, duration = float(t[-1]), x[-1].copy(), judgement.chunk
-
-
-def least_damped_rate(model: Model, speed: float, state: np.ndarray | None = None,
-                      route: np.ndarray | None = None) -> tuple[float, float]:  # fmt: skip
-    """Real parts (1/s) of the least damped oscillatory eigenvalue (NaN if none oscillates)
-    and of the least damped eigenvalue of all, of the model linearised at ``state``
-    (default the centred state) at ``speed`` (m/s)."""
-    jac = model.jacobian(speed) if state is None else model.jacobian(speed, state, route=route)
-    w = np.linalg.eigvals(jac)
-    osc = w[w.imag > 1e-6]
-    return (float(np.max(osc.real)) if osc.size else math.nan), float(np.max(w.real))
-
-
-def trial_reason(verdict: str, amplitude: float, rate: float, decided: bool,
-                 duration: float, status: str) -> str:  # fmt: skip
-    """Why a trial has its verdict, in words (empty for a decided stable or hunting one)."""
-    size = f"{amplitude * 1e3:.3g} mm" if math.isfinite(amplitude) else "unknown size"
-    if verdict == UNDECIDED:
-        trend = (f"{rate:+.3g} 1/s" if math.isfinite(rate) else "no oscillation to measure")
-        return (f"after {duration:.0f} s the motion is {size} and neither died out nor "
-                f"settled on a cycle (envelope trend {trend})")  # fmt: skip
-    if verdict == DERAILED:
-        return f"a wheelset left the track (solver status {status})"
-    if verdict == BLOW_UP:
-        return (f"the integration blew up (solver status {status}): numerics, not physics; "
-                "give a smaller dt")  # fmt: skip
-    if verdict == HUNTING and not decided:
-        return f"still growing at {rate:+.3g} 1/s after {duration:.0f} s ({size})"
-    return ""
 
 
 def run_trial(

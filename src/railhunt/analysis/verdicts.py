@@ -13,6 +13,7 @@ became non-finite: numerics, a smaller step is needed).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from typing import Any
 
@@ -117,3 +118,21 @@ def ending(status: str, x: Any, scale: Any = None) -> str:
     if tail.shape[0] >= 8 and np.max(flips) > BLOW_UP_FLIPS * (tail.shape[0] - 1):
         return BLOW_UP
     return DERAILED
+
+
+def trial_reason(verdict: str, amplitude: float, rate: float, decided: bool,
+                 duration: float, status: str) -> str:  # fmt: skip
+    """Why a trial has its verdict, in words (empty for a decided stable or hunting one)."""
+    size = f"{amplitude * 1e3:.3g} mm" if math.isfinite(amplitude) else "unknown size"
+    if verdict == UNDECIDED:
+        trend = (f"{rate:+.3g} 1/s" if math.isfinite(rate) else "no oscillation to measure")
+        return (f"after {duration:.0f} s the motion is {size} and neither died out nor "
+                f"settled on a cycle (envelope trend {trend})")  # fmt: skip
+    if verdict == DERAILED:
+        return f"a wheelset left the track (solver status {status})"
+    if verdict == BLOW_UP:
+        return (f"the integration blew up (solver status {status}): numerics, not physics; "
+                "give a smaller dt")  # fmt: skip
+    if verdict == HUNTING and not decided:
+        return f"still growing at {rate:+.3g} 1/s after {duration:.0f} s ({size})"
+    return ""
