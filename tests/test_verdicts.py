@@ -181,7 +181,7 @@ def test_the_validity_limits_by_hand():
     q0 = 50e3
     Y = np.array([[0.9 * q0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]])
     Q = np.full((1, 8), q0)
-    Q[0, 3] = 0.3 * q0  # unloaded by 70 %
+    Q[0, 2], Q[0, 3] = 1.7 * q0, 0.3 * q0  # wheelset 2 right unloaded by 70 % of its mean
     sum_y = np.array([[0.0, 0.0, PRUDHOMME_A + 2 * q0 / 3 + 1.0, 0.0]])
     limits = {lim.name: lim for lim in check_wheels(Y, Q, sum_y, q0, ["t = 1 s"])}
     assert limits["Y/Q"].value == pytest.approx(0.9) and limits["Y/Q"].limit == 0.8

@@ -36,7 +36,8 @@ VERDICTS: dict[str, str] = {
     HUNTING: "the motion did not die out and kept oscillating: it settled on a limit "
              "cycle (a steady cycle) or kept growing, without leaving the track.",
     STEADY_CYCLE: "hunting on a limit cycle: the envelope is stationary (within ±0.01 1/s "
-                  "over 3 s, peaks within 5 %), outside the range where the linear motion "
+                  "over 3 s, peaks within 5 %; a small negative growth is still a cycle), "
+                  "outside the range where the linear motion "
                   "itself is that slow (near the Hopf point a small oscillation must grow "
                   "or decay first).",
     UNDECIDED: "the run ended (its longest duration, or a too short run) neither died "
