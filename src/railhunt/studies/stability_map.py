@@ -106,7 +106,11 @@ def evaluate_radius(item: tuple[int, float], vehicle: Vehicle, cant: float,
             extra = [w for w in res.warnings if w not in message]
             if not res.bracketed:
                 status = STATUS_NO_CRITICAL_SPEED
-                extra = [critical_speed_message(res)]
+                tried = [t.speed_kmh for t in res.trials]
+                calm = res.limit_reached and tried and all(t.verdict == "stable"
+                                                           for t in res.trials)  # fmt: skip
+                extra = [f"stable at every speed tried, up to {max(tried):g} km/h, below the "
+                         "limit" if calm else critical_speed_message(res)]  # fmt: skip
             message = "; ".join(m for m in (message, *extra) if m)
     except Exception as exc:  # noqa: BLE001 - one bad radius must not end the study
         if interrupted(exc):
