@@ -44,10 +44,16 @@ def critical_speed_message(result: Any) -> str:
     """Why a critical-speed search found no change of verdict, in words."""
     verdicts = {t.verdict for t in result.trials}
     speeds = [t.speed_kmh for t in result.trials]
+    if getattr(result, "limit_reached", False):
+        if not speeds:
+            return f"beyond the validity envelope at every speed: {result.limit.text}"
+        return (f"stable at every speed tried, up to {max(speeds):g} km/h, where the search "
+                f"stopped (limit reached: {result.limit.text})")  # fmt: skip
     if verdicts == {"stable"}:
         return f"stable at every speed tried, up to {max(speeds):g} km/h"
-    if verdicts == {"hunting"}:
-        return f"hunting at every speed tried, down to {min(speeds):g} km/h"
+    if "stable" not in verdicts:
+        return (f"not stable at any speed tried, down to {min(speeds):g} km/h "
+                f"({', '.join(sorted(verdicts))})")  # fmt: skip
     return "the search did not bracket a change of verdict"
 
 
