@@ -178,3 +178,11 @@ def test_on_a_given_scheduler_same_indices_as_in_process(tmp_path):
         cluster.close()
     assert there.indices == here.indices
     assert (tmp_path / "there.csv").read_bytes() == (tmp_path / "here.csv").read_bytes()
+
+
+def test_a_layout_vehicle_and_its_own_parameters():
+    """Any vehicle railhunt describes: a two-axle wagon, a layout with other parameters."""
+    v = Vehicle.shipped("two_axle_wagon")
+    r = sensitivity(v, {"K_px": ("tolerance", 0.2), "K_py": ("tolerance", 0.2)},
+                    ["linear_critical_speed_kmh"], samples=2, seed=0, workers=1)
+    assert r.points == 8 and all(math.isfinite(row["ST"]) for row in r.indices)

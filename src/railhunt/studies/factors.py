@@ -127,7 +127,7 @@ def parse_factors(model: object, factors: Mapping[str, object],
     out = []
     for name, spec in factors.items():
         if nominal is not None and name not in nominal:
-            raise UnknownParameterError(name, spec)
+            raise UnknownParameterError(name, spec, known=tuple(nominal))
         out.append(parse_factor(name, spec, nominal, allow_normal))
     if len(out) < 2 and allow_normal:
         raise ValueError("a sensitivity study needs at least two factors")

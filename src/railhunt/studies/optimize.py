@@ -172,7 +172,7 @@ def optimize(
     check_connect_timeout(connect_timeout)
     facs = parse_factors(model, factors, allow_normal=False)
     names = [f.name for f in facs]
-    tie_map = parse_ties(ties) if isinstance(model, Vehicle) else {}
+    tie_map = parse_ties(ties, model.parameters) if isinstance(model, Vehicle) else {}
     columns = list(dict.fromkeys([c for _, c in objs] + [c for c, _, _ in cons]))
     options = options_from(output_options)
     nominal = model.as_dict() if isinstance(model, Vehicle) else None

@@ -243,7 +243,7 @@ def sensitivity(
     if not outputs or isinstance(outputs[0], (list, tuple)):
         raise ValueError(f"outputs = {list(outputs)!r} is invalid: give one or more names")
     facs = parse_factors(model, factors)
-    tie_map = parse_ties(ties) if isinstance(model, Vehicle) else {}
+    tie_map = parse_ties(ties, model.parameters) if isinstance(model, Vehicle) else {}
     if ties and not isinstance(model, Vehicle):
         raise ValueError("ties apply to a vehicle's parameters, not to a model function")
     names = [f.name for f in facs]
