@@ -12,10 +12,12 @@ follows only the Hopf branch and only down to its first turn:
    between points) until the speed, having fallen more than the Hopf-type tolerance below
    the Hopf point (:func:`railhunt.analysis.branches.classify_hopf`), rises again: the fold
    has been passed;
-3. **refinement**: the branch is traced again from the last coarse point above the fold
-   with steps of ``fine_step_kmh``, ``fine_step_amplitude`` until it turns, and the fold is
-   the vertex of the parabola through the three points around the turn (as for the folds
-   of a whole diagram, :func:`railhunt.analysis.branches.make_branch`).
+3. **refinement**: from the lowest coarse point the branch is traced again with steps of
+   ``fine_step_kmh``, ``fine_step_amplitude`` (corrector to 1e-9) toward the side where
+   the parabola through the three coarse points around it has its vertex (the other side
+   if the speed rises at once), until it turns; the fold is the vertex of the parabola
+   through the three fine points around the turn (as for the folds of a whole diagram,
+   :func:`railhunt.analysis.branches.make_branch`).
 
 A branch that never turns below the Hopf point (supercritical, type (b)) has its lowest
 cycle at the Hopf point: ``speed_kmh`` is then the Hopf speed and ``turned`` is False.
@@ -87,6 +89,16 @@ class FoldSpeed(ResultDisplay):
         """One row."""
         return {"fold_speed_kmh": (self.speed_kmh, "km/h"), "amplitude": (self.amplitude, "m"),
                 "hopf_speed_kmh": (self.hopf_speed_kmh, "km/h"), "turned": (self.turned, "")}
+
+
+def _vertex_before(three: list[PeriodicOrbit]) -> bool:
+    """Whether the parabola's vertex through three orbits around a turn lies before the
+    middle one (along the branch: speed against the distance in the (10 km/h, 1 mm) plane)."""
+    v = np.array([o.speed_kmh for o in three])
+    a = np.array([o.amplitude for o in three])
+    seg = np.hypot(np.diff(v) / 10.0, np.diff(a) / 1e-3)
+    c = np.polyfit([-seg[0], 0.0, seg[1]], v, 2)
+    return bool(c[0] != 0 and -c[1] / (2 * c[0]) < 0)
 
 
 def _check_positive(name: str, value: float, unit: str) -> float:
@@ -187,30 +199,33 @@ def fold_speed(
         i = int(np.argmin(branch.speed_kmh))
         return FoldSpeed(float(branch.speed_kmh[i]), float(branch.amplitude[i]), hopf, False,
                          count, f"Hopf branch {msg}: no fold below the Hopf point")  # fmt: skip
-    # Refine: retrace from the last coarse point before the lowest one, with fine steps.
+    # Refine: from the lowest coarse point, with fine steps toward the side of the turn
+    # (the vertex of the parabola through the three coarse points around the lowest).
     speeds = np.array([o.speed_kmh for o in orbits])
     low = int(np.argmin(speeds))
-    start = low - 1
     fine = _Limits(min_kmh, hopf + 50.0, max_amplitude, 60, fine_step_kmh, fine_step_amplitude)
-    if start >= 0:
-        u0 = shoot.pack(orbits[start].state, orbits[start].period, kmh_to_ms(speeds[start]))
-        prev = orbits[start - 1] if start >= 1 else small[-1][1]
-        u_prev = shoot.pack(prev.state, prev.period, kmh_to_ms(prev.speed_kmh))
-    else:
-        u0, u_prev = small[-1][0], small[-2][0]
+    before = 1 <= low < len(orbits) - 1 and _vertex_before(orbits[low - 1:low + 2])
+    u0 = shoot.pack(orbits[low].state, orbits[low].period, kmh_to_ms(speeds[low]))
+    prev = orbits[low - 1] if low >= 1 else small[-1][1]
+    u_prev = shoot.pack(prev.state, prev.period, kmh_to_ms(prev.speed_kmh))
     lin0 = shoot.linearise(u0)
-    t0 = u0 - u_prev
+    t0 = (u_prev - u0) if before else (u0 - u_prev)
     t0 /= np.linalg.norm(t0)
 
     def turned(part: list[PeriodicOrbit]) -> str:
-        s = [o.speed_kmh for o in part]
-        return "turned" if len(s) >= 2 and s[-1] > s[-2] else ""
+        s = [orbits[low].speed_kmh] + [o.speed_kmh for o in part]
+        return "turned" if s[-1] > s[-2] else ""
 
     tracer_fine = _Tracer(shoot, fine, None)
-    part, msg_fine, _, _ = tracer_fine.trace(u0, lin0, t0, 0.3 * ds, fine.max_points, fine,
-                                             stop=turned)  # fmt: skip
-    count += len(part)
-    pts = ([orbits[start]] if start >= 0 else []) + part
+    pts: list[PeriodicOrbit] = []
+    msg_fine = ""
+    for direction in (t0, -t0):  # toward the turn; the other way if it rose at once
+        part, msg_fine, _, _ = tracer_fine.trace(u0, lin0, direction, 0.3 * ds,
+                                                 fine.max_points, fine, stop=turned)  # fmt: skip
+        count += len(part)
+        pts = [orbits[low], *part]
+        if len(part) >= 2 or msg_fine != "turned":
+            break
     branch = make_branch(pts, "hopf")
     if branch.folds and msg_fine == "turned":
         f = min(branch.folds, key=lambda f: f.speed_kmh)
