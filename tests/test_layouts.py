@@ -227,6 +227,16 @@ def test_every_layouts_internal_forces_sum_to_zero(name, vehicle):
             np.testing.assert_allclose(matrix @ u, 0.0, atol=1e-9 * max(np.abs(matrix).max(), 1))
 
 
+@pytest.mark.parametrize(("name", "vehicle"), LAYOUTS, ids=[n for n, _ in LAYOUTS])
+def test_every_layout_writes_a_file_that_loads_back_to_the_same_numbers(tmp_path, name,
+                                                                        vehicle):  # fmt: skip
+    back = load_vehicle(vehicle.to_toml(tmp_path / f"{name}.toml"))
+    assert back.as_dict() == vehicle.as_dict() and back.layout == vehicle.layout
+    a, b = Model(back).system(), Model(vehicle).system()
+    for field in a._fields:
+        np.testing.assert_array_equal(getattr(a, field), getattr(b, field), err_msg=field)
+
+
 def test_fixed_body_of_the_cooperrider_bogie_is_an_infinitely_heavy_one():
     from railhunt.analysis.linear import linear_critical_speed
 
@@ -435,3 +445,24 @@ def test_study_design_on_a_layouts_own_parameters():
         build_design(v, {"k44": [1.0]})
     with pytest.raises(ValueError, match="unknown vehicle parameter 'C_d1'"):
         build_design(v, {"C_d1": [1.0]})
+
+
+def test_the_crossing_of_a_stiffly_held_frame_is_hunting():
+    """The Cooperrider bogie's frame moves laterally a little more than its wheelsets in
+    the crossing mode (1.0 against 0.9): it is still the hunting instability."""
+    from railhunt.analysis.linear import linear_critical_speed
+
+    assert linear_critical_speed(Vehicle.shipped("cooperrider_bogie")).is_hunting_mode
+    assert linear_critical_speed(PAPER).is_hunting_mode
+
+
+def test_the_hopf_start_is_the_crossing_pair():
+    """A locomotive's two nearly equal bogie modes: the continuation starts from the pair
+    that crosses at the Hopf point, not from the damped one the per-speed pick prefers."""
+    from railhunt.analysis.continuation import _hopf_start
+    from railhunt.analysis.linear import linear_critical_speed
+
+    v = Vehicle.shipped("three_axle_bogie_car")
+    lc = linear_critical_speed(v, tol_kmh=1e-3)
+    _, period = _hopf_start(Model(v), lc.speed_kmh)
+    assert 1.0 / period == pytest.approx(lc.frequency_hz, rel=1e-3)
