@@ -22,6 +22,7 @@ from railhunt.cli import main
 from railhunt.kernel.integrators import STATUS_NAMES
 from railhunt.simulation import integrate_model
 from railhunt.stepsize import stable_step, stable_step_for
+from railhunt.vehicle.files import load_shipped, shipped_vehicles
 
 PAPER = Vehicle.paper2019()
 DOCS = Path(__file__).resolve().parents[1] / "docs"
@@ -224,11 +225,11 @@ def test_a_simulated_run_lists_the_limits_it_reaches():
     assert calm.limits == [] and calm.warnings == []
 
 
-@pytest.mark.parametrize("name", railhunt.vehicle.files.shipped_vehicles())
+@pytest.mark.parametrize("name", shipped_vehicles())
 def test_every_shipped_vehicle_has_a_stability_map_that_stops_at_a_stated_limit(name):
     from railhunt.studies.stability_map import stability_map
 
-    vehicle = railhunt.vehicle.files.load_shipped(name)
+    vehicle = load_shipped(name)
     rows = stability_map(vehicle, [600.0, 8000.0], workers=1).rows
     for row in rows:
         assert re.search(r"limit reached: curving limit at \d+ km/h: ", row["message"]), row
@@ -282,7 +283,7 @@ def test_flange_bound_motion_that_does_not_die_out_is_not_stable():
     # 8-12 mm against the flange without a stationary envelope; a slightly negative trend
     # after 60 s was called stable, and the search reported 317 km/h. Its nonlinear
     # critical speed lies at or below the Hopf point, near the diagram's fold (238.9 km/h).
-    vehicle = railhunt.vehicle.files.load_shipped("cooperrider_bogie")
+    vehicle = load_shipped("cooperrider_bogie")
     res = critical_speed(vehicle)
     hopf = railhunt.linear_critical_speed(vehicle).speed_kmh
     assert res.speed_kmh <= hopf and res.speed_kmh == pytest.approx(238.9, abs=2.0)
