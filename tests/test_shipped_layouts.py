@@ -193,3 +193,16 @@ def test_the_docs_example_is_the_sprung_wheelset_of_routh_hurwitz(tmp_path):
     assert result.speed_kmh / 3.6 == pytest.approx(expected.critical_speed, rel=1e-5)
     assert result.frequency_hz == pytest.approx(expected.frequency, rel=1e-5)
     assert math.isfinite(expected.critical_speed)
+
+
+def test_cooperrider_hopf_is_subcritical_and_its_cycles_turn_on_the_flanges():
+    """Seydel's 'hard loss of stability': the cycles born at the Hopf point are unstable
+    and turn at a fold below it; the fold's amplitude lies just beyond the flange
+    clearance delta = 9.1 mm (the flange springs are what stabilises the large cycles)."""
+    v = railhunt.Vehicle.shipped("cooperrider_bogie")
+    diagram = railhunt.bifurcation_diagram(v, speed_range_kmh=(200.0, 280.0))
+    assert diagram.hopf_type == "subcritical"
+    assert diagram.hopf_speed_kmh == pytest.approx(247.1, abs=0.1)
+    fold = min(diagram.folds, key=lambda f: f.speed_kmh)
+    assert 230.0 < fold.speed_kmh < diagram.hopf_speed_kmh
+    assert v.delta < fold.amplitude < v.delta + 2e-3
