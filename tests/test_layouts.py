@@ -445,3 +445,24 @@ def test_study_design_on_a_layouts_own_parameters():
         build_design(v, {"k44": [1.0]})
     with pytest.raises(ValueError, match="unknown vehicle parameter 'C_d1'"):
         build_design(v, {"C_d1": [1.0]})
+
+
+def test_the_crossing_of_a_stiffly_held_frame_is_hunting():
+    """The Cooperrider bogie's frame moves laterally a little more than its wheelsets in
+    the crossing mode (1.0 against 0.9): it is still the hunting instability."""
+    from railhunt.analysis.linear import linear_critical_speed
+
+    assert linear_critical_speed(Vehicle.shipped("cooperrider_bogie")).is_hunting_mode
+    assert linear_critical_speed(PAPER).is_hunting_mode
+
+
+def test_the_hopf_start_is_the_crossing_pair():
+    """A locomotive's two nearly equal bogie modes: the continuation starts from the pair
+    that crosses at the Hopf point, not from the damped one the per-speed pick prefers."""
+    from railhunt.analysis.continuation import _hopf_start
+    from railhunt.analysis.linear import linear_critical_speed
+
+    v = Vehicle.shipped("three_axle_bogie_car")
+    lc = linear_critical_speed(v, tol_kmh=1e-3)
+    _, period = _hopf_start(Model(v), lc.speed_kmh)
+    assert 1.0 / period == pytest.approx(lc.frequency_hz, rel=1e-3)

@@ -82,6 +82,12 @@ def _hopf_start(model: Model, hopf_kmh: float,
     else:
         w, vecs = sorted_eig(path.jacobian_kmh(hopf_kmh))
     k = hunting_mode_index(w, vecs, model.half_gauge, model.layout)
+    if w[k].real < -1e-3:
+        # The pick is clearly damped here, so it is not the pair that crosses at this Hopf
+        # point (two nearly equal bogie modes of a long vehicle): start from the crossing
+        # pair itself, the oscillatory eigenvalue with the largest real part.
+        osc = np.flatnonzero(w.imag > 1e-6)
+        k = int(osc[np.argmax(w.real[osc])])
     lam = w[k]
     if lam.imag < 0:
         lam, vec = np.conj(lam), np.conj(vecs[:, k])
