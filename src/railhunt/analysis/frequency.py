@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from railhunt.analysis.critical import STABLE, Judgement, run_until_verdict
+from railhunt.analysis.critical import HUNTING, STABLE, Judgement, run_until_verdict
 from railhunt.analysis.linear import eigen_analysis
 from railhunt.analysis.periodic import periodic_orbit, phase_origin
 from railhunt.model import Model
@@ -282,7 +282,9 @@ def hunting_frequency(
         vd = model.damper_velocities(x[:, forces])
         f, source = (f_orbit, "limit-cycle") if math.isfinite(f_orbit) else (f_fft,
                                                                               "limit-cycle-fft")
-        return HuntingFrequency(speed_kmh, f, source, verdict, amp, f_eig, zeta, f_fft,
+        # A cycle shooting converged on is hunting, whatever the run's envelope said.
+        found = HUNTING if math.isfinite(f_orbit) else verdict
+        return HuntingFrequency(speed_kmh, f, source, found, amp, f_eig, zeta, f_fft,
                                 f_orbit, t, y, vd, v_u, rejected)  # fmt: skip
     # The run left the track (derailed) or blew up (numerics): no frequency.
     return HuntingFrequency(speed_kmh, math.nan, "limit-exceeded", verdict, math.nan, f_eig,
