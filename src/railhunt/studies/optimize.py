@@ -37,7 +37,7 @@ from railhunt.vehicle import Vehicle
 __all__ = ["ParetoResult", "optimize", "parse_constraint", "parse_objective"]
 
 #: Constraint violation of a design without a value (and its objectives' stand-in).
-MISSING_VIOLATION = 1e12
+MISSING_VIOLATION = 1e15
 
 _CONSTRAINT = re.compile(r"^\s*([A-Za-z_][A-Za-z0-9_]*)\s*(>=|<=)\s*(\S+)\s*$")
 
