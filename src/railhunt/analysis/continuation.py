@@ -316,7 +316,7 @@ def bifurcation_diagram(
     # A branch that comes back below the smallest seeded amplitude has reached another Hopf
     # point (in a curve the equilibrium can lose and regain stability along the speed).
     hopf_limits = dataclasses.replace(limits, lo=min(lo, hopf - 10.0), hi=max(hi, hopf + 10.0),
-                                      min_amplitude=0.75 * SMALL_ORBIT_SEEDS[-1])  # fmt: skip
+                                      min_amplitude=0.75 * small_orbit_seeds(shoot, shape)[-1])
     more, msg, complete, below = tracer.trace(small[-1][0], small[-1][2], tangent / ds, ds,
                                               limits.max_points, hopf_limits)  # fmt: skip
     branches = [make_branch([o for _, o, _ in small] + more, "hopf", (hopf, period0))]
@@ -369,6 +369,20 @@ def bifurcation_diagram(
                               fold_below_range=below)  # fmt: skip
 
 
+def small_orbit_seeds(shoot: Shooting, shape: np.ndarray) -> tuple[float, ...]:
+    """``y_w1(0)`` of the three small orbits that start the Hopf branch (m).
+
+    Small orbits are small on every wheelset: where the crossing mode ``shape`` (normalised
+    to ``y_w1 = 1``) moves another wheelset more than y_w1 (a rear bogie of an articulated
+    train), the seeds shrink by that ratio (the paper's vehicle: y_w1 moves most, the seeds
+    are :data:`SMALL_ORBIT_SEEDS`).
+    """
+    largest = float(np.max(np.abs(shape[shoot.model.layout.wheelset_y])))
+    if largest > 1.0:
+        return tuple(s / largest for s in SMALL_ORBIT_SEEDS)
+    return SMALL_ORBIT_SEEDS
+
+
 def hopf_branch_start(shoot: Shooting, tracer: _Tracer, x_hopf: np.ndarray, shape: np.ndarray,
                       period0: float, hopf: float,
                       ) -> list[tuple[np.ndarray, PeriodicOrbit, tuple]]:  # fmt: skip
@@ -379,7 +393,7 @@ def hopf_branch_start(shoot: Shooting, tracer: _Tracer, x_hopf: np.ndarray, shap
     of each, in order of amplitude.
     """
     iy = tracer.iy
-    seeds = SMALL_ORBIT_SEEDS
+    seeds = small_orbit_seeds(shoot, shape)
     small: list[tuple[np.ndarray, PeriodicOrbit, tuple]] = []
     u = shoot.pack(x_hopf + seeds[0] * shape, period0, kmh_to_ms(hopf))
     for n, eps in enumerate(seeds):

@@ -33,11 +33,11 @@ import numpy as np
 
 from railhunt.analysis.branches import make_branch
 from railhunt.analysis.continuation import (
-    SMALL_ORBIT_SEEDS,
     _hopf_start,
     _Limits,
     _Tracer,
     hopf_branch_start,
+    small_orbit_seeds,
 )
 from railhunt.analysis.linear import linear_critical_speed
 from railhunt.analysis.periodic import PeriodicOrbit, Shooting
@@ -172,9 +172,10 @@ def fold_speed(
     shape, period0 = _hopf_start(model, hopf)
     shoot = Shooting(model, symmetric=True, dt_speed=kmh_to_ms(hopf))
     shoot.set_period_hint(period0)
+    smallest = 0.75 * small_orbit_seeds(shoot, shape)[-1]
     coarse = _Limits(min_kmh, hopf + 50.0, max_amplitude, int(max_points), coarse_step_kmh,
-                     coarse_step_amplitude, min_amplitude=0.75 * SMALL_ORBIT_SEEDS[-1],
-                     max_ds=max_ds, newton_tol=coarse_tol)  # fmt: skip
+                     coarse_step_amplitude, min_amplitude=smallest, max_ds=max_ds,
+                     newton_tol=coarse_tol)  # fmt: skip
     tracer = _Tracer(shoot, coarse, None)
     small = hopf_branch_start(shoot, tracer, np.zeros(shoot.n_state), shape, period0, hopf)
     tol = max(2.0, 0.01 * hopf)
