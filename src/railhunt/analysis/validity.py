@@ -33,7 +33,7 @@ from typing import Any
 import numpy as np
 
 from railhunt.kernel.contact import wheel_geometry
-from railhunt.kernel.track import alignment
+from railhunt.kernel.track import rail_offsets
 
 #: Nadal's limit of the derailment quotient (EN 14363, curves of R >= 250 m).
 YQ_LIMIT = 0.8
@@ -255,7 +255,7 @@ def run_limits(result: Any, model: Any, excitation: object = None) -> list[Limit
     t = np.asarray(result.t)
     if t.size == 0:
         return []
-    where = [f"t = {ti:.3f} s" for ti in t]
+    where = _Times(t)
     nw = model.system().wheelsets.shape[0]
     ws = [f"w{j + 1}" for j in range(nw)]
     q0 = static_wheel_load(model)
@@ -266,12 +266,21 @@ def run_limits(result: Any, model: Any, excitation: object = None) -> list[Limit
         Q = np.column_stack([result[f"Q_{w}{s}"] for w in ws for s in "LR"])
         sum_y = np.column_stack([result[f"SY_{w}"] for w in ws])
         out += check_wheels(Y, Q, sum_y, q0, where)
-    delay = model.wheelset_offsets()
     trk = model.system(excitation)
-    track_y = np.array([[alignment(result.speed * ti - d, trk.track, trk.track_samples)[0]
-                         for d in delay] for ti in t])  # fmt: skip
+    track_y = rail_offsets(t, float(result.speed), trk.wheelset_delay, trk.track,
+                           trk.track_samples)  # fmt: skip
     out += check_motion(result.x, model, where, track_y)
     return out
+
+
+class _Times:
+    """``where[i]`` of a run: ``"t = 1.234 s"``, formatted only for the row reported."""
+
+    def __init__(self, t: np.ndarray) -> None:
+        self.t = t
+
+    def __getitem__(self, i: int) -> str:
+        return f"t = {float(self.t[i]):.3f} s"
 
 
 def warnings_of(limits: list[Limit]) -> list[str]:
