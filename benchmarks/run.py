@@ -377,6 +377,11 @@ def main(argv: list[str] | None = None) -> int:
     t_cold = cold_start()
     rows.append(Row("import + first call (cold process, numba cache warm)", t_cold, 5.0))
 
+    # The global studies (issue 19): a fold speed, a Sobol study on 2 workers.
+    from global_studies import global_study_rows
+
+    rows += global_study_rows(repeat, args.quick, Row)
+
     # Sweep throughput (issue 5): the same study on a local Dask cluster of 1 and 2
     # workers (cluster start-up not timed).
     rates = {n: sweep_rate(vehicle, n, repeat) for n in (1, 2)}

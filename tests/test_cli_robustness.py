@@ -259,7 +259,7 @@ def test_a_critical_speed_above_the_linear_one_is_flagged(monkeypatch):
 
 def test_the_trial_table_explains_a_steady_cycle():
     text = " ".join(run("critical-speed").stdout.split())
-    assert "steady cycle: hunting on a limit cycle, the envelope stationary" in text
+    assert "steady cycle: hunting on a limit cycle: the envelope is stationary" in text
     assert "a small negative growth is still a cycle" in text
 
 

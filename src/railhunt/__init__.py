@@ -27,6 +27,8 @@ Main entry points (imported lazily, so ``import railhunt`` stays fast)::
     sweep, read_results              parameter studies on all cores or a Dask cluster
     table1_study, section_changes    the paper's Table 1 study and its Fig. 12 sections
     reproduce                        the paper's Figs. 6-13 and an HTML report
+    sensitivity                      Sobol / Morris indices of outputs to varied factors
+    optimize                         Pareto front of objectives by NSGA-II
 """
 
 # ruff: noqa: I001  (the TYPE_CHECKING block keeps one `from` line per module with `X as X`)
@@ -89,6 +91,10 @@ _EXPORTS = {
     "table1_study": "railhunt.studies.sections",
     "section_changes": "railhunt.studies.sections",
     "reproduce": "railhunt.studies.reproduce",
+    "sensitivity": "railhunt.studies.sensitivity",
+    "SensitivityResult": "railhunt.studies.sensitivity",
+    "optimize": "railhunt.studies.optimize",
+    "ParetoResult": "railhunt.studies.optimize",
 }
 
 __all__ = sorted(_EXPORTS)
@@ -140,10 +146,15 @@ if TYPE_CHECKING:
     from railhunt.model import Model as Model
     from railhunt.paper2019 import load_table1 as load_table1
     from railhunt.simulation import SimulationResult as SimulationResult, simulate as simulate
+    from railhunt.studies.optimize import ParetoResult as ParetoResult, optimize as optimize
     from railhunt.studies.reproduce import reproduce as reproduce
     from railhunt.studies.sections import (
         section_changes as section_changes,
         table1_study as table1_study,
+    )
+    from railhunt.studies.sensitivity import (
+        SensitivityResult as SensitivityResult,
+        sensitivity as sensitivity,
     )
     from railhunt.studies.stability_map import stability_map as stability_map
     from railhunt.studies.store import SweepResults as SweepResults, read_results as read_results

@@ -77,6 +77,27 @@ class SimulationResult(ResultDisplay):
     stats: dict = field(default_factory=dict)
     derived: dict = field(default_factory=dict)
     layout: StateLayout = LAYOUT
+    limits: list = field(default_factory=list)
+
+    @property
+    def warnings(self) -> list[str]:
+        """The limits of the validity envelope the run reached, and a blow-up, in words
+        (:mod:`railhunt.analysis.validity`)."""
+        from railhunt.analysis.validity import warnings_of
+
+        out = warnings_of(self.limits)
+        if self.ending == "blow-up":
+            out.insert(0, f"blow-up: the integration blew up ({self.message}); numerics, "
+                          "not physics: give a smaller dt")  # fmt: skip
+        return out
+
+    @property
+    def ending(self) -> str:
+        """How the run ended in verdict words: ``"ok"``, ``"derailed"`` or ``"blow-up"``
+        (:func:`railhunt.analysis.verdicts.ending`)."""
+        from railhunt.analysis.verdicts import ending
+
+        return ending(self.status, self.x)
 
     @property
     def speed_kmh(self) -> float:
@@ -483,6 +504,10 @@ def simulate(
     x_init = _initial_state(model, excitation, x0)
     if dt is None:
         dt = auto_step(model, speed)
+    elif method == "rk4":
+        from railhunt.stepsize import check_step
+
+        check_step(model, speed, dt)
     check_output_size(duration, dt, output_dt, method, model.layout)
     route = None if curve is None else curve.route()
     t, x, code, stats = integrate_model(
@@ -490,10 +515,14 @@ def simulate(
         output_dt=output_dt, rtol=rtol, y_limit=y_limit, route=route,
     )  # fmt: skip
     vd = model.damper_velocities(x[:, model.layout.forces])
-    return SimulationResult(
+    result = SimulationResult(
         t=t, x=x, speed=speed, status=integrators.STATUS_NAMES[code],
         message=integrators.status_message(code, t[-1], y_limit), damper_velocity=vd,
         excitation_end=excitation_end_time(model, excitation, speed), stats=stats,
         derived=derived_channels(t, x, *model.args(speed, excitation, route), model.layout),
         layout=model.layout,
     )  # fmt: skip
+    from railhunt.analysis.validity import run_limits
+
+    result.limits = run_limits(result, model, excitation)
+    return result

@@ -69,7 +69,7 @@ class InitialDisplacement:
     Parameters
     ----------
     amplitude : float
-        Initial lateral displacement (m).
+        Initial lateral displacement (m), within ±0.02 m.
     wheelsets : tuple of int
         Which wheelsets (1 = leading) are displaced; all four by default. A vehicle with
         fewer wheelsets ignores the numbers it does not have (so the default displaces
@@ -80,7 +80,8 @@ class InitialDisplacement:
     wheelsets: tuple[int, ...] = (1, 2, 3, 4)
 
     def __post_init__(self) -> None:
-        _check("amplitude", self.amplitude, -0.05, 0.05, "m")
+        # A start beyond 20 mm is past the flange, next to the 25 mm derailment limit.
+        _check("amplitude", self.amplitude, -0.02, 0.02, "m")
         for w in self.wheelsets:
             if isinstance(w, bool) or not isinstance(w, int) or w < 1:
                 raise ValueError(f"wheelsets contains {w!r}: wheelsets are numbered from 1")

@@ -167,6 +167,14 @@ class BifurcationDiagram(ResultDisplay):
     fold_below_range: bool = False
 
     @property
+    def warnings(self) -> list[str]:
+        """What the diagram may miss, in words: cycles a release settled on that lie on no
+        branch, releases that left the track, branches that stopped early."""
+        parts = self.message.split("; ") if self.message else []
+        return [p for p in parts if p.startswith(("not found", "releases that left"))
+                or "Newton failed" in p or "used all its" in p]  # fmt: skip
+
+    @property
     def folds(self) -> list[Fold]:
         """Every fold of every branch."""
         return [f for b in self.branches for f in b.folds]
@@ -220,6 +228,7 @@ class BifurcationDiagram(ResultDisplay):
             "fold_below_range": self.fold_below_range,
             "complete": self.complete,
             "message": self.message,
+            "warnings": self.warnings,
             "branches": [b.to_dict() for b in self.branches],
         }
 

@@ -45,8 +45,9 @@ from railhunt.analysis.periodic import (
     Shooting,
     newton,
 )
+from railhunt.analysis.verdicts import ending
 from railhunt.curve import Curve
-from railhunt.kernel.integrators import OK
+from railhunt.kernel.integrators import OK, STATUS_NAMES
 from railhunt.model import Model
 from railhunt.units import kmh_to_ms, ms_to_kmh
 from railhunt.vehicle import Vehicle
@@ -96,6 +97,10 @@ def _hopf_start(model: Model, hopf_kmh: float,
     return np.real(vec), 2 * math.pi / abs(lam.imag)
 
 
+#: ``y_w1(0)`` of the three small orbits that start the Hopf branch (m).
+SMALL_ORBIT_SEEDS = (5e-5, 1e-4, 2e-4)
+
+
 @dataclass
 class _Limits:
     lo: float
@@ -105,6 +110,8 @@ class _Limits:
     max_step_kmh: float
     max_step_amplitude: float
     min_amplitude: float = 0.0  # m: a branch whose amplitude falls below this has ended
+    max_ds: float = 50.0  # largest arclength step (scaled unknowns)
+    newton_tol: float = 1e-9  # corrector's tolerance (scaled residual)
 
 
 class _Tracer:
@@ -136,17 +143,19 @@ class _Tracer:
 
     def trace(self, u0: np.ndarray, lin0: tuple, tangent: np.ndarray, ds: float,
               budget: int, limits: _Limits | None = None,
+              stop: Callable[[list[PeriodicOrbit]], str] | None = None,
               ) -> tuple[list[PeriodicOrbit], str, bool, bool]:  # fmt: skip
         """Follow the branch from ``u0`` along ``tangent``.
 
         Returns the new orbits, why it stopped, whether it stopped normally (False: Newton
         failed at the smallest step or the point budget ran out) and whether it left the
-        speed range downward (the branch goes on below the range).
+        speed range downward (the branch goes on below the range). ``stop(orbits)``,
+        called after each new orbit, ends the trace (normally) when it returns a reason.
         """
         lim, shoot, iy = limits or self.limits, self.shoot, self.iy
         orbits: list[PeriodicOrbit] = []
         u_prev, lin = u0, lin0
-        ds_min, ds_max = 1e-3, 50.0
+        ds_min, ds_max = 1e-3, lim.max_ds
         for _ in range(budget):
             jac = shoot.jacobian(u_prev, lin=lin)
             tangent = self.null_vector(jac, tangent)
@@ -165,8 +174,8 @@ class _Tracer:
                 def jac_fun(w, r, t_row=t_row):
                     return np.vstack([shoot.jacobian(w, r[:-1]), t_row])
 
-                u_new, norm, it, ok, _ = newton(fun, jac_fun, u_pred, tol=1e-9, max_iter=8,
-                                                jac=np.vstack([jac, t_row]))  # fmt: skip
+                u_new, norm, it, ok, _ = newton(fun, jac_fun, u_pred, tol=lim.newton_tol,
+                                                max_iter=8, jac=np.vstack([jac, t_row]))
                 # Reject a corrector that strayed far from the predictor (it may have jumped
                 # to another branch) or fell onto the equilibrium, which solves the shooting
                 # equations for any period.
@@ -193,6 +202,9 @@ class _Tracer:
             if orbit.amplitude < lim.min_amplitude:
                 return orbits, (f"came back to the equilibrium near {v_kmh:.1f} km/h (a second "
                                 "Hopf point)"), True, False  # fmt: skip
+            reason = stop(orbits) if stop is not None else ""
+            if reason:
+                return orbits, reason, True, False
         return orbits, f"used all its {budget} points (incomplete)", False, False
 
 
@@ -203,7 +215,7 @@ def bifurcation_diagram(
     max_points: int = 600,
     max_step_kmh: float = 5.0,
     max_step_amplitude: float = 4e-4,
-    seed_amplitudes: tuple[float, ...] = (0.008,),
+    seed_amplitudes: tuple[float, ...] = (0.008, 0.004, 0.012),
     dt: float | None = None,
     symmetric: bool = True,
     creep_law: str | None = None,
@@ -216,8 +228,13 @@ def bifurcation_diagram(
     around the Hopf point). So that a branch of large cycles not connected to it within
     the range is not missed, the vehicle is also simulated from each of ``seed_amplitudes``
     (an initial lateral displacement of all wheelsets) at the top of the range and, if that
-    is below the Hopf point, 10 km/h above the Hopf point; a cycle it settles on that lies
-    on no branch yet is refined by shooting and followed both ways.
+    is below the Hopf point, 10 km/h above the Hopf point, and at lower speeds in steps of
+    50 km/h down to the bottom of the range (:func:`seed_ladder`: where the top release
+    derails, a lower one settles), so that the large branch and the lowest limit cycle do not
+    depend on the top of the range; a cycle a release settles on that lies on no branch
+    yet is refined by shooting and followed both ways. ``complete`` is True only when
+    every branch was followed to its end and every cycle a release settled on lies on a
+    branch; ``message`` says what was not found and which releases left the track.
 
     Parameters
     ----------
@@ -233,7 +250,8 @@ def bifurcation_diagram(
     max_step_kmh, max_step_amplitude : float
         Largest change of speed (km/h) and amplitude (m) between neighbouring points.
     seed_amplitudes : tuple of float
-        Initial displacements (m) of the seeding simulations; empty for none.
+        Initial displacements (m) of the seeding simulations (release sizes, all tried
+        at the first speed where one settles on a cycle); empty for none.
     dt : float, optional
         Largest RK4 step of the shooting (s); default the automatic step at the top speed.
     symmetric : bool
@@ -268,6 +286,9 @@ def bifurcation_diagram(
     linear = linear_critical_speed(vehicle, max_kmh=2000.0, tol_kmh=1e-3, creep_law=creep_law,
                                    curve=curve)  # fmt: skip
     hopf = linear.speed_kmh
+    if math.isfinite(linear.unstable_from_kmh):
+        raise ValueError(f"the equilibrium is {linear.text}: no Hopf point to start the "
+                         "branch of limit cycles from")  # fmt: skip
     if not math.isfinite(hopf):
         where = "centred" if curve is None else "steady-curving"
         raise ValueError(f"the {where} equilibrium stays stable up to 2000 km/h: no Hopf point")
@@ -278,23 +299,105 @@ def bifurcation_diagram(
                      route=None if path is None else path.route,
                      equilibrium=None if path is None else path.state)  # fmt: skip
     shoot.set_period_hint(period0)
-    y_w1 = model.layout.y_w1
     x_hopf = np.zeros(shoot.n_state) if path is None else path.state(kmh_to_ms(hopf))
     tracer = _Tracer(shoot, limits, on_point)
-    iy = tracer.iy
 
     # 1. Three small orbits with y_w1(0) fixed (natural parameter), from the eigenvector.
-    seeds = (5e-5, 1e-4, 2e-4)
-    # Small orbits are small on every wheelset: where the crossing mode moves another
-    # wheelset more than y_w1 (a rear bogie of an articulated train), the seeds shrink by
-    # that ratio (the paper's vehicle: y_w1 moves most, the seeds are as they were).
-    largest = float(np.max(np.abs(shape[model.layout.wheelset_y])))
+    small = hopf_branch_start(shoot, tracer, x_hopf, shape, period0, hopf)
+    a_small = np.array([o.amplitude for _, o, _ in small])
+    v_small = np.array([o.speed_kmh for _, o, _ in small])
+    hopf_from_orbits = float(np.polyfit(a_small, v_small, 2)[-1])
+
+    # 2. The Hopf branch by pseudo-arclength continuation.
+    # The Hopf branch is followed over the range widened to 10 km/h around the Hopf point,
+    # so that its type is known even when the Hopf point lies outside the range.
+    tangent = small[-1][0] - small[-2][0]
+    ds = float(np.linalg.norm(tangent))
+    # A branch that comes back below the smallest seeded amplitude has reached another Hopf
+    # point (in a curve the equilibrium can lose and regain stability along the speed).
+    hopf_limits = dataclasses.replace(limits, lo=min(lo, hopf - 10.0), hi=max(hi, hopf + 10.0),
+                                      min_amplitude=0.75 * small_orbit_seeds(shoot, shape)[-1])
+    more, msg, complete, below = tracer.trace(small[-1][0], small[-1][2], tangent / ds, ds,
+                                              limits.max_points, hopf_limits)  # fmt: skip
+    branches = [make_branch([o for _, o, _ in small] + more, "hopf", (hopf, period0))]
+    messages = [f"Hopf branch: {msg}"]
+
+    # 3. Branches of large cycles found by simulation: at the top of the range and, when
+    # that is below the Hopf point, also just above it (where every disturbance grows to
+    # a cycle, while near a fold the large cycles' basins can be too small to reach); when
+    # every release derails there, at lower speeds too (seed_ladder), so that the large
+    # branch does not depend on the top of the range.
+    missed: list[tuple[float, float, str]] = []
+    notes: list[str] = []
+    for amp, seed_kmh, found in _seed_releases(model, shoot, path, seed_amplitudes,
+                                               seed_ladder(lo, hi, hopf), branches,
+                                               missed, notes):  # fmt: skip
+        u_c, orbit_c, lin_c = found
+        if on_point is not None:
+            on_point(orbit_c)
+        jac = shoot.jacobian(u_c, lin=lin_c)
+        t0 = np.zeros(u_c.size)
+        t0[-1] = 1.0
+        t0 = tracer.null_vector(jac, t0)
+        seed_limits = dataclasses.replace(limits, hi=max(hi, seed_kmh))
+        parts = []
+        for sign in (-1.0, 1.0):
+            part, msg, ok, out_low = tracer.trace(u_c, lin_c, sign * t0, 0.5,
+                                                  limits.max_points, seed_limits)  # fmt: skip
+            parts.append(part)
+            complete &= ok
+            below |= out_low
+            messages.append(f"branch from {amp * 1e3:g} mm at {seed_kmh:g} km/h "
+                            f"({'down' if sign < 0 else 'up'}): {msg}")  # fmt: skip
+        branches.append(make_branch(parts[0][::-1] + [orbit_c] + parts[1], "simulation"))
+    missed_text = [text for v, a, text in missed if not _covered(branches, v, a)]
+    if missed_text:
+        complete = False
+        messages.extend(missed_text)
+    messages.extend(notes)
+
+    hopf_type = classify_hopf(branches[0], hopf)
+    if below:  # a branch goes on below the range: its lowest cycle is not known
+        lowest = math.nan
+        messages.append(f"a branch leaves the range below {lo:g} km/h: the lowest limit "
+                        "cycle is below the range (fold_speed_kmh is NaN)")  # fmt: skip
+    else:
+        lowest = min([hopf] + [float(np.min(b.speed_kmh)) for b in branches]
+                     + [f.speed_kmh for b in branches for f in b.folds])  # fmt: skip
+    return BifurcationDiagram(branches, hopf, hopf_from_orbits, linear.frequency_hz, lowest,
+                              hopf_type, (lo, hi), complete, "; ".join(messages),
+                              fold_below_range=below)  # fmt: skip
+
+
+def small_orbit_seeds(shoot: Shooting, shape: np.ndarray) -> tuple[float, ...]:
+    """``y_w1(0)`` of the three small orbits that start the Hopf branch (m).
+
+    Small orbits are small on every wheelset: where the crossing mode ``shape`` (normalised
+    to ``y_w1 = 1``) moves another wheelset more than y_w1 (a rear bogie of an articulated
+    train), the seeds shrink by that ratio (the paper's vehicle: y_w1 moves most, the seeds
+    are :data:`SMALL_ORBIT_SEEDS`).
+    """
+    largest = float(np.max(np.abs(shape[shoot.model.layout.wheelset_y])))
     if largest > 1.0:
-        seeds = tuple(s / largest for s in seeds)
+        return tuple(s / largest for s in SMALL_ORBIT_SEEDS)
+    return SMALL_ORBIT_SEEDS
+
+
+def hopf_branch_start(shoot: Shooting, tracer: _Tracer, x_hopf: np.ndarray, shape: np.ndarray,
+                      period0: float, hopf: float,
+                      ) -> list[tuple[np.ndarray, PeriodicOrbit, tuple]]:  # fmt: skip
+    """Three small orbits of the Hopf branch, ``y_w1(0)`` fixed at 0.05, 0.1 and 0.2 mm.
+
+    Started from the hunting eigenvector ``shape`` about ``x_hopf`` and the Hopf period
+    (natural parameter: the speed is an unknown). Returns ``(u, orbit, linearisation)``
+    of each, in order of amplitude.
+    """
+    iy = tracer.iy
+    seeds = small_orbit_seeds(shoot, shape)
     small: list[tuple[np.ndarray, PeriodicOrbit, tuple]] = []
     u = shoot.pack(x_hopf + seeds[0] * shape, period0, kmh_to_ms(hopf))
     for n, eps in enumerate(seeds):
-        target = (x_hopf[y_w1] + eps) / shoot.scale[y_w1]
+        target = (x_hopf[tracer.y_w1] + eps) / shoot.scale[tracer.y_w1]
         if n >= 2:
             u = small[-1][0] + (small[-1][0] - small[-2][0]) * (eps - seeds[n - 1]) / (
                 seeds[n - 1] - seeds[n - 2])  # fmt: skip
@@ -314,70 +417,17 @@ def bifurcation_diagram(
             raise RuntimeError(f"no small limit cycle found near the Hopf point ({hopf:.1f} km/h)")
         orbit, lin = tracer.solve(u, norm, it)
         small.append((u, orbit, lin))
-    a_small = np.array([o.amplitude for _, o, _ in small])
-    v_small = np.array([o.speed_kmh for _, o, _ in small])
-    hopf_from_orbits = float(np.polyfit(a_small, v_small, 2)[-1])
-
-    # 2. The Hopf branch by pseudo-arclength continuation.
-    # The Hopf branch is followed over the range widened to 10 km/h around the Hopf point,
-    # so that its type is known even when the Hopf point lies outside the range.
-    tangent = small[-1][0] - small[-2][0]
-    ds = float(np.linalg.norm(tangent))
-    # A branch that comes back below the smallest seeded amplitude has reached another Hopf
-    # point (in a curve the equilibrium can lose and regain stability along the speed).
-    hopf_limits = dataclasses.replace(limits, lo=min(lo, hopf - 10.0), hi=max(hi, hopf + 10.0),
-                                      min_amplitude=0.75 * seeds[-1])  # fmt: skip
-    more, msg, complete, below = tracer.trace(small[-1][0], small[-1][2], tangent / ds, ds,
-                                              limits.max_points, hopf_limits)  # fmt: skip
-    branches = [make_branch([o for _, o, _ in small] + more, "hopf", (hopf, period0))]
-    messages = [f"Hopf branch: {msg}"]
-
-    # 3. Branches of large cycles found by simulation: at the top of the range and, when
-    # that is below the Hopf point, also just above it (where every disturbance grows to
-    # a cycle, while near a fold the large cycles' basins can be too small to reach).
-    seed_speeds = [hi] + ([min(hopf + 10.0, 2.0 * hi)] if hopf + 10.0 > hi else [])
-    for amp in seed_amplitudes:
-        for seed_kmh in seed_speeds:
-            found = _seed_orbit(model, shoot, seed_kmh, amp, path)
-            if found is None:
-                continue
-            u_c, orbit_c, lin_c = found
-            if any(on_branch(b, orbit_c) for b in branches):
-                continue
-            if on_point is not None:
-                on_point(orbit_c)
-            jac = shoot.jacobian(u_c, lin=lin_c)
-            t0 = np.zeros(u_c.size)
-            t0[-1] = 1.0
-            t0 = tracer.null_vector(jac, t0)
-            seed_limits = dataclasses.replace(limits, hi=max(hi, seed_kmh))
-            parts = []
-            for sign in (-1.0, 1.0):
-                part, msg, ok, out_low = tracer.trace(u_c, lin_c, sign * t0, 0.5,
-                                                      limits.max_points, seed_limits)  # fmt: skip
-                parts.append(part)
-                complete &= ok
-                below |= out_low
-                messages.append(f"branch from {amp * 1e3:g} mm at {seed_kmh:g} km/h "
-                                f"({'down' if sign < 0 else 'up'}): {msg}")  # fmt: skip
-            branches.append(make_branch(parts[0][::-1] + [orbit_c] + parts[1], "simulation"))
-            break
-
-    hopf_type = classify_hopf(branches[0], hopf)
-    if below:  # a branch goes on below the range: its lowest cycle is not known
-        lowest = math.nan
-        messages.append(f"a branch leaves the range below {lo:g} km/h: the lowest limit "
-                        "cycle is below the range (fold_speed_kmh is NaN)")  # fmt: skip
-    else:
-        lowest = min([hopf] + [float(np.min(b.speed_kmh)) for b in branches]
-                     + [f.speed_kmh for b in branches for f in b.folds])  # fmt: skip
-    return BifurcationDiagram(branches, hopf, hopf_from_orbits, linear.frequency_hz, lowest,
-                              hopf_type, (lo, hi), complete, "; ".join(messages),
-                              fold_below_range=below)  # fmt: skip
+    return small
 
 
 def _seed_orbit(model: Model, shoot: Shooting, speed_kmh: float, amplitude: float,
                 path: EquilibriumPath | None = None):  # fmt: skip
+    """:func:`_release` without its outcome: the orbit found, or None."""
+    return _release(model, shoot, speed_kmh, amplitude, path)[1]
+
+
+def _release(model: Model, shoot: Shooting, speed_kmh: float, amplitude: float,
+             path: EquilibriumPath | None = None):  # fmt: skip
     """Simulate from a displaced state, shoot from where it settles; None if it decays.
 
     In a curve (``path``) the run starts from the curving equilibrium with the wheelsets
@@ -396,17 +446,19 @@ def _seed_orbit(model: Model, shoot: Shooting, speed_kmh: float, amplitude: floa
     route = None if path is None else path.route
     t, x, status, _ = integrate_model(model, speed, 12.0, x0, dt=dt, route=route)
     if status != OK:
-        return None
+        return ending(STATUS_NAMES[status], x), None
     y = x[:, y_w1]
     tail = y[t > t[-1] - 2.0]
     if np.max(np.abs(tail - x_eq[y_w1])) < 1e-4:
-        return None
+        return "decays", None
+    size = float(np.max(np.abs(tail - x_eq[y_w1])))
+    failed = f"settles on a cycle of about {size * 1e3:.3g} mm that shooting did not converge on"
     k = phase_origin(t, y)
     # Period guess from the spacing of the last maxima.
     peaks = [i for i in range(1, y.size - 1) if y[i] >= y[i - 1] and y[i] > y[i + 1]
              and t[i] > t[-1] - 2.0]  # fmt: skip
     if len(peaks) < 3:
-        return None
+        return failed, None
     period = float(np.mean(np.diff(t[peaks])))
     u = shoot.pack(np.where(np.arange(layout.n_state) == shoot.phase_index, 0.0, x[k]),
                    period, speed)  # fmt: skip
@@ -420,10 +472,62 @@ def _seed_orbit(model: Model, shoot: Shooting, speed_kmh: float, amplitude: floa
 
     w, norm, it, ok, _ = newton(fun, jac_fun, u[:-1], tol=1e-9, max_iter=20)
     if not ok:
-        return None
+        return failed, None
     u = np.append(w, vs)
     lin = shoot.linearise(u)
-    return u, shoot.orbit(u, norm, it, lin), lin
+    return "cycle", (u, shoot.orbit(u, norm, it, lin), lin)
+
+
+def seed_ladder(lo: float, hi: float, hopf: float, step_kmh: float = 50.0) -> list[float]:
+    """Speeds (km/h) a release is tried at, in order: the top of the range, just above
+    the Hopf point when the top is below it, then down from the top by ``step_kmh`` to
+    the bottom of the range."""
+    first = [hi] + ([min(hopf + 10.0, 2.0 * hi)] if hopf + 10.0 > hi else [])
+    # On a fixed grid (multiples of step_kmh), so that a wider range tries every speed a
+    # narrower one tries: widening a diagram's range cannot lose its lowest limit cycle.
+    top = step_kmh * math.ceil(hi / step_kmh - 1e-9) - step_kmh
+    down = [float(v) for v in np.arange(top, lo - 1e-9, -step_kmh)]
+    return first + [v for v in down if v not in first]
+
+
+def _seed_releases(model: Model, shoot: Shooting, path: EquilibriumPath | None,
+                   amplitudes: tuple[float, ...], speeds: list[float], branches: list,
+                   missed: list[tuple[float, float, str]], notes: list[str]):  # fmt: skip
+    """Releases that settle on a cycle on no branch yet: yields ``(amplitude, speed,
+    found)`` for each, walking every speed of ``speeds`` (:func:`seed_ladder`) with every
+    release size (the caller follows each yielded cycle into a branch before the walk goes
+    on, so cycles on that branch are not followed again). Appends to ``missed``
+    ``(speed_kmh, amplitude, sentence)`` for each cycle a release settled on that shooting
+    could not refine, and to ``notes`` which releases left the track."""
+    derailed: list[str] = []
+    for seed_kmh in speeds:
+        for amp in amplitudes:
+            outcome, found = _release(model, shoot, seed_kmh, amp, path)
+            if outcome in ("derailed", "blow-up"):
+                derailed.append(f"{amp * 1e3:g} mm at {seed_kmh:g} km/h ({outcome})")
+                continue
+            if outcome == "decays":
+                continue
+            if found is None:
+                size = float(outcome.split("about ")[1].split(" mm")[0]) * 1e-3
+                if not any(v == seed_kmh for v, _, _ in missed):  # one sentence a speed
+                    missed.append((seed_kmh, size, f"not found: a release of "
+                                   f"{amp * 1e3:g} mm at {seed_kmh:g} km/h {outcome}"))
+                continue
+            if any(on_branch(b, found[1]) for b in branches):
+                continue
+            yield amp, seed_kmh, found
+    if derailed:
+        notes.append("releases that left the track: " + ", ".join(derailed))
+
+
+def _covered(branches: list, speed_kmh: float, amplitude: float) -> bool:
+    """Whether a branch has an orbit within 5 km/h and 10 % of this cycle's amplitude."""
+    for b in branches:
+        near = np.abs(b.speed_kmh - speed_kmh) <= 5.0
+        if np.any(near & (np.abs(b.amplitude - amplitude) <= 0.1 * amplitude)):
+            return True
+    return False
 
 
 def bifurcation_family(

@@ -2,9 +2,10 @@
 
 Each trial speed is simulated with a single lateral track defect followed by ideal track,
 and judged from the envelope of the leading wheelset's lateral displacement after the
-defect: *stable* (decays to the centred equilibrium) or *hunting* (settles on a limit
-cycle, or derails). A run is extended chunk by chunk until its envelope is clearly decayed
-or clearly stationary, so that a slowly decaying or slowly growing run is not misjudged
+defect: *stable* (the motion died out) or not (*hunting*, *undecided*, *derailed* or
+*blow-up*; the words are defined in :mod:`railhunt.analysis.verdicts`). A run is
+extended chunk by chunk until its envelope is clearly decayed or clearly stationary, so
+that a slowly decaying or slowly growing run is not misjudged
 at the end of a fixed window. The search starts at 300 km/h, steps by 10 km/h until the
 verdict changes, then bisects to 1 km/h; the critical speed is the highest stable speed.
 """
@@ -18,18 +19,33 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from railhunt.analysis.curving import EquilibriumPath
+from railhunt.analysis.modes import least_damped_rate
 from railhunt.analysis.search import bracket_and_bisect, check_search
+from railhunt.analysis.validity import curving_limit
+from railhunt.analysis.verdicts import (
+    BLOW_UP,
+    DERAILED,
+    HUNTING,
+    STABLE,
+    UNDECIDED,
+    ending,
+    trial_reason,
+)
 from railhunt.curve import Curve
 from railhunt.kernel.integrators import OK, STATUS_NAMES
 from railhunt.kernel.layout import LAYOUT, StateLayout
 from railhunt.model import Model
 from railhunt.results import Columns, ResultDisplay, Row
 from railhunt.simulation import Y_LIMIT, auto_step, excitation_end_time, integrate_model
+from railhunt.stepsize import check_step
 from railhunt.track import SampledTrack, SingleDefect, check_excitation
 from railhunt.units import kmh_to_ms
 from railhunt.vehicle import Vehicle
 
-STABLE, HUNTING = "stable", "hunting"
+#: Near the Hopf point the linear motion itself is nearly stationary: when the least
+#: damped oscillatory eigenvalue's real part is within ``settle_rate`` of zero, an envelope
+#: below this size (m) is not taken for a steady cycle (it must grow or decay first).
+LINEAR_RANGE = 1e-3
 
 #: A run counts as decayed only below this share of its excitation's size (and below
 #: :attr:`Judgement.decay_amplitude`): a verdict is never taken on a motion that is still
@@ -80,6 +96,7 @@ class Trial:
     duration: float  # simulated time (s)
     decided: bool  # False when max_duration ran out and the trend decided
     status: str  # integrator status ("ok", "derailed", ...)
+    reason: str = ""  # why an undecided, derailed or blow-up trial is so, in words
 
 
 @dataclass(repr=False)
@@ -106,12 +123,36 @@ class CriticalSpeedResult(ResultDisplay):
     bracketed: bool = True
     excitation: object = None
     curve: Curve | None = None
+    limit: object = None  # CurvingLimit of a search in a curve (railhunt.analysis.validity)
+
+    @property
+    def limit_reached(self) -> bool:
+        """True when the search stopped at a limit of the validity envelope."""
+        return bool(self.limit is not None and self.limit.reached)
 
     @property
     def first_hunting_kmh(self) -> float:
-        """Lowest speed judged hunting (km/h)."""
-        hunting = [t.speed_kmh for t in self.trials if t.verdict == HUNTING]
+        """Lowest speed judged not stable (hunting, undecided, derailed or blow-up; km/h)."""
+        hunting = [t.speed_kmh for t in self.trials if t.verdict != STABLE]
         return min(hunting) if hunting else math.nan
+
+    @property
+    def undecided(self) -> list[Trial]:
+        """The trials whose motion neither died out nor settled (counted as not stable)."""
+        return [t for t in self.trials if t.verdict == UNDECIDED]
+
+    @property
+    def warnings(self) -> list[str]:
+        """What the answer must be read with: undecided trials, derailments, blow-ups."""
+        out = [f"limit reached: {self.limit.text}"] if self.limit_reached else []
+        for t in self.trials:
+            if t.verdict in (UNDECIDED, DERAILED, BLOW_UP):
+                out.append(f"{t.speed_kmh:g} km/h: {t.verdict}"
+                           + (f" ({t.reason})" if t.reason else ""))  # fmt: skip
+        if self.undecided:
+            out.append(f"{len(self.undecided)} trial(s) undecided, counted as not stable: the "
+                       "critical speed is the highest speed whose motion died out")  # fmt: skip
+        return out
 
     def _summary(self) -> list[Row]:
         rows: list[Row] = [("nonlinear critical speed", self.speed_kmh, "km/h"),
@@ -161,7 +202,8 @@ def swing_peaks(t: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 def judge(
     t: np.ndarray, y: np.ndarray, t_start: float, judgement: Judgement, final: bool = False,
-    two_sided: bool = False,
+    two_sided: bool = False, linear_rate: float | None = None,
+    equilibrium_rate: float | None = None,
 ) -> tuple[str | None, float, float]:  # fmt: skip
     """Verdict on a displacement history after ``t_start``.
 
@@ -170,10 +212,21 @@ def judge(
     oscillations that are not symmetric about that equilibrium (in a curve); otherwise the
     peaks of ``|y|`` (:func:`envelope_peaks`).
 
+    ``linear_rate`` is the real part of the least damped oscillatory eigenvalue at the
+    run's speed (1/s): when it lies within ``settle_rate`` of zero (near the Hopf point),
+    or of the envelope's own rate, an envelope below :data:`LINEAR_RANGE` is the linear
+    motion, not a steady cycle, and the run must go on. ``equilibrium_rate`` is the
+    largest real part of all the eigenvalues there: when it is negative, a motion still
+    decaying below
+    :data:`LINEAR_RANGE` at ``final`` dies out (it is inside the linear range of a stable
+    equilibrium) and is judged stable.
+
     Returns
     -------
-    verdict : {"stable", "hunting"} or None
-        None while the run is still undecided (and ``final`` is False).
+    verdict : {"stable", "hunting", "undecided"} or None
+        None while the run is still open (and ``final`` is False). At ``final`` a run
+        that has not died out is "hunting" when its envelope grows, else "undecided"
+        (verdict words: :mod:`railhunt.analysis.verdicts`).
     amplitude : float
         Latest envelope value (m).
     growth_rate : float
@@ -193,11 +246,38 @@ def judge(
     if np.count_nonzero(win) >= 4 and tt[-1] - t_start >= judgement.settle_window:
         rate = float(np.polyfit(pt[win], np.log(pa[win]), 1)[0])
         spread = (pa[win].max() - pa[win].min()) / pa[win].mean()
-        if abs(rate) < judgement.settle_rate and spread < 0.05:
+        # Inside the linear range an envelope that changes at the linear motion's own rate
+        # (or, near the Hopf point, at almost none) is that motion, not a steady cycle.
+        near_hopf = (linear_rate is not None and math.isfinite(linear_rate)
+                     and amplitude < LINEAR_RANGE
+                     and (abs(linear_rate) < judgement.settle_rate
+                          or abs(rate - linear_rate) < judgement.settle_rate))  # fmt: skip
+        if abs(rate) < judgement.settle_rate and spread < 0.05 and not near_hopf:
             return HUNTING, float(pa[win][-1]), rate
     if final:
-        return (STABLE if (math.isnan(rate) or rate < 0) else HUNTING), amplitude, rate
+        if math.isfinite(rate) and rate > 0:
+            return HUNTING, amplitude, rate
+        linear_decay = (equilibrium_rate is not None and equilibrium_rate < 0
+                        and amplitude < LINEAR_RANGE)  # fmt: skip
+        if not math.isfinite(rate):  # no oscillation to fit: the trend of max |y| instead
+            rate = _drift_rate(tt, yy, judgement.settle_window)
+        if math.isfinite(rate) and rate < 0 and linear_decay:
+            return STABLE, amplitude, rate
+        return UNDECIDED, amplitude, rate
     return None, amplitude, rate
+
+
+def _drift_rate(t: np.ndarray, y: np.ndarray, window: float) -> float:
+    """Log slope (1/s) of ``max |y|`` between the last second and the second ``window``
+    earlier, for a motion that does not oscillate; NaN when the record is too short."""
+    now = t >= t[-1] - 1.0
+    before = (t >= t[-1] - window - 1.0) & (t < t[-1] - window)
+    if not before.any():
+        return math.nan
+    a_now, a_before = float(np.max(np.abs(y[now]))), float(np.max(np.abs(y[before])))
+    if a_now <= 0 or a_before <= 0:
+        return math.nan
+    return math.log(a_now / a_before) / window
 
 
 @dataclass(frozen=True)
@@ -208,8 +288,9 @@ class RunVerdict:
     Attributes
     ----------
     verdict : {"decays", "hunting", "undecided"}
-        ``"decays"``: the motion dies out; ``"hunting"``: it settles on a limit cycle,
-        keeps growing or leaves the track; ``"undecided"``: the run cannot tell.
+        ``"decays"``: the motion dies out; ``"hunting"``: it settles on a limit cycle or
+        keeps growing; ``"derailed"``: it left the track; ``"blow-up"``: the integration
+        blew up (numerics); ``"undecided"``: the run cannot tell.
     amplitude : float
         Latest envelope of the leading wheelset's lateral displacement (m).
     growth_rate : float
@@ -241,11 +322,14 @@ def judge_run(result: object, judgement: Judgement | None = None,
     """
     judgement = judgement or Judgement()
     t, y = np.asarray(result.t), np.asarray(result["y_w1"])
-    if result.status == "derailed":
-        amp = float(np.max(np.abs(y[-50:])))
-        return RunVerdict("hunting", amp, math.nan, f"hunting: left the track ({result.message})")
     if result.status != "ok":
-        return RunVerdict("undecided", math.nan, math.nan, f"undecided: {result.message}")
+        how = ending(result.status, np.asarray(result.x))
+        amp = float(np.max(np.abs(y[-50:]))) if y.size else math.nan
+        if how == DERAILED:
+            return RunVerdict(DERAILED, amp, math.nan, f"derailed: left the track "
+                              f"({result.message})")  # fmt: skip
+        return RunVerdict(BLOW_UP, amp, math.nan, f"blow-up: the integration blew up, not "
+                          f"physics; give a smaller dt ({result.message})")  # fmt: skip
     t_exc = float(result.excitation_end)
     if t[-1] <= t_exc:
         return RunVerdict("undecided", math.nan, math.nan, "undecided: the run ended before "
@@ -327,8 +411,9 @@ def run_until_verdict(
 
     Returns
     -------
-    verdict : {"stable", "hunting"}
-        ``"hunting"`` also when the run left the track or diverged (``code != OK``).
+    verdict : {"stable", "hunting", "undecided", "derailed", "blow-up"}
+        The verdict words of :mod:`railhunt.analysis.verdicts`; a run that stopped early
+        (``code != OK``) is "derailed" or "blow-up" (:func:`~railhunt.analysis.verdicts.ending`).
     t, x : numpy.ndarray
         The whole record: times (s) and states.
     code : int
@@ -349,6 +434,9 @@ def run_until_verdict(
         judgement = replace(judgement, decay_amplitude=DECAY_SHARE * size)
     t0, x_start = 0.0, np.asarray(x0, dtype=float)
     duration = t_exc + judgement.chunk
+    linear_rate, equilibrium_rate = least_damped_rate(model, speed,
+                                                      None if reference is None else x0,
+                                                      route)  # fmt: skip
     ts: list[np.ndarray] = []
     xs: list[np.ndarray] = []
     while True:
@@ -361,10 +449,13 @@ def run_until_verdict(
         tt, xx = np.concatenate(ts), np.concatenate(xs)
         y = xx[:, y_w1] if reference is None else xx[:, y_w1] - y_ref
         if code != OK:
-            return HUNTING, tt, xx, code, float(np.max(np.abs(y[-50:]))), math.nan, True
+            how = ending(STATUS_NAMES[code], xx)
+            return how, tt, xx, code, float(np.max(np.abs(y[-50:]))), math.nan, True
         final = tt[-1] - t_exc >= judgement.max_duration - 1e-9
         verdict, amp, rate = judge(tt, y, t_exc, judgement, final=final,
-                                   two_sided=reference is not None)  # fmt: skip
+                                   two_sided=reference is not None,
+                                   linear_rate=linear_rate,
+                                   equilibrium_rate=equilibrium_rate)  # fmt: skip
         if verdict is not None:
             return verdict, tt, xx, code, amp, rate, not final
         t0, x_start, duration = float(t[-1]), x[-1].copy(), judgement.chunk
@@ -390,7 +481,9 @@ def run_trial(
         model, speed_kmh, judgement, excitation, method=method, dt=dt, output_dt=output_dt,
         route=route, reference=reference,
     )  # fmt: skip
-    return Trial(speed_kmh, verdict, amp, rate, float(t[-1]), decided, STATUS_NAMES[code])
+    status = STATUS_NAMES[code]
+    return Trial(speed_kmh, verdict, amp, rate, float(t[-1]), decided, status,
+                 trial_reason(verdict, amp, rate, decided, float(t[-1]), status))
 
 
 def critical_speed(
@@ -449,6 +542,10 @@ def critical_speed(
     if excitation is None:
         excitation = SingleDefect()
     check_excitation(excitation, (SingleDefect, SampledTrack))
+    if excitation_size(excitation) == 0.0:
+        raise ValueError(f"excitation = {excitation!r} has zero size: it excites nothing, so "
+                         "every speed would look stable; give a defect of nonzero "
+                         "amplitude")  # fmt: skip
     judgement = judgement or Judgement()
     check_search(start_kmh, step_kmh, tol_kmh, min_kmh, max_kmh)
     model = Model(vehicle, creep_law=creep_law, contact=contact)
@@ -456,10 +553,24 @@ def critical_speed(
 
     if dt is not None and not (math.isfinite(dt) and 0 < dt <= 0.01):
         raise ValueError(f"dt = {dt!r} s is invalid: must be finite and in (0, 0.01] s")
+    if dt is not None and method == "rk4":
+        check_step(model, kmh_to_ms(start_kmh), dt)
 
     path = None if curve is None else EquilibriumPath(model, curve)
+    limit = None
+    if path is not None:  # the search stops at the first limit of the steady state
+        limit = curving_limit(path, min_kmh, max_kmh, step_kmh, tol_kmh)
+        if limit.reached:
+            if not math.isfinite(limit.last_valid_kmh):
+                return CriticalSpeedResult(math.nan, trials, bracketed=False,
+                                           excitation=excitation, curve=curve, limit=limit)
+            max_kmh = limit.last_valid_kmh
+            start_kmh = min(start_kmh, max_kmh)
+            step_kmh = min(step_kmh, max(max_kmh - min_kmh, tol_kmh))
 
     def verdict(speed_kmh: float) -> str:
+        if dt is not None and method == "rk4":
+            check_step(model, kmh_to_ms(speed_kmh), dt)
         step = dt if dt is not None else auto_step(model, kmh_to_ms(speed_kmh))
         if path is None:
             trial = run_trial(model, speed_kmh, excitation, judgement, method=method, dt=step)
@@ -472,9 +583,10 @@ def critical_speed(
             progress(trial)
         return trial.verdict
 
-    lo, _, bracketed = bracket_and_bisect(lambda kmh: verdict(kmh) == HUNTING, start_kmh,
+    lo, _, bracketed = bracket_and_bisect(lambda kmh: verdict(kmh) != STABLE, start_kmh,
                                           step_kmh, tol_kmh, min_kmh, max_kmh)  # fmt: skip
     if not bracketed:
         return CriticalSpeedResult(math.nan, trials, bracketed=False, excitation=excitation,
-                                   curve=curve)  # fmt: skip
-    return CriticalSpeedResult(lo, trials, bracketed=True, excitation=excitation, curve=curve)
+                                   curve=curve, limit=limit)  # fmt: skip
+    return CriticalSpeedResult(lo, trials, bracketed=True, excitation=excitation, curve=curve,
+                               limit=limit)

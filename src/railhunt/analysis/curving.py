@@ -185,6 +185,15 @@ class CurvingResult(ResultDisplay):
     hunting_eigenvalue: complex
     eigenvalues: np.ndarray = field(repr=False)
     residual: float = 0.0
+    limits: list = field(default_factory=list)
+
+    @property
+    def warnings(self) -> list[str]:
+        """The limits of the validity envelope this state reaches, in words
+        (:mod:`railhunt.analysis.validity`)."""
+        from railhunt.analysis.validity import warnings_of
+
+        return warnings_of(self.limits)
 
     @property
     def hunting_frequency_hz(self) -> float:
@@ -240,6 +249,8 @@ class CurvingResult(ResultDisplay):
             "least_damping_ratio": self.least_damping_ratio,
             "hunting_frequency_hz": self.hunting_frequency_hz,
             "hunting_damping_ratio": self.hunting_damping_ratio,
+            "warnings": self.warnings,
+            "limits": [lim.to_dict() for lim in self.limits],
         }
 
 
@@ -295,7 +306,7 @@ def curving_state(model: Model, speed: float, curve: Curve, x: np.ndarray,
     mod = np.abs(w)
     zeta = np.where(mod > 0, -w.real / np.where(mod > 0, mod, 1.0), 1.0)
     outward = 1.0 if curve.curvature > 0 else -1.0
-    return CurvingResult(
+    result = CurvingResult(
         speed_kmh=ms_to_kmh(speed), curve=curve, state=x.copy(),
         wheelset_y=x[layout.wheelset_y].copy(), attack_angle=-outward * x[layout.wheelset_psi],
         Y=y_force, Q=q, derailment_quotient=y_force / q, sum_Y=sum_y,
@@ -308,6 +319,10 @@ def curving_state(model: Model, speed: float, curve: Curve, x: np.ndarray,
         stable=bool(w[0].real < 0), least_damping_ratio=float(np.min(zeta)),
         hunting_eigenvalue=hunt, eigenvalues=w, residual=residual,
     )  # fmt: skip
+    from railhunt.analysis.validity import curving_limits
+
+    result.limits = curving_limits(result, model)
+    return result
 
 
 def curving(vehicle: Vehicle, speed_kmh: float, curve: Curve, creep_law: str | None = None,

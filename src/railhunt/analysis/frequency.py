@@ -101,7 +101,8 @@ class HuntingFrequency(ResultDisplay):
         says why); or ``"limit-exceeded"`` when the run left the derailment limit (or
         diverged) before settling: no frequency (NaN).
     verdict : str
-        ``"stable"`` (the disturbance decays) or ``"hunting"``.
+        ``"stable"`` (the disturbance decays), ``"hunting"``, ``"undecided"``,
+        ``"derailed"`` or ``"blow-up"`` (:mod:`railhunt.analysis.verdicts`).
     amplitude : float
         Amplitude of the leading wheelset on the limit cycle (m); 0 when stable.
     eigen_frequency_hz : float
@@ -281,10 +282,12 @@ def hunting_frequency(
         vd = model.damper_velocities(x[:, forces])
         f, source = (f_orbit, "limit-cycle") if math.isfinite(f_orbit) else (f_fft,
                                                                               "limit-cycle-fft")
-        return HuntingFrequency(speed_kmh, f, source, HUNTING, amp, f_eig, zeta, f_fft,
+        # A cycle shooting converged on is hunting, whatever the run's envelope said.
+        found = HUNTING if math.isfinite(f_orbit) else verdict
+        return HuntingFrequency(speed_kmh, f, source, found, amp, f_eig, zeta, f_fft,
                                 f_orbit, t, y, vd, v_u, rejected)  # fmt: skip
-    # The run left the track (derailment limit) or diverged: no frequency.
-    return HuntingFrequency(speed_kmh, math.nan, "limit-exceeded", HUNTING, math.nan, f_eig,
+    # The run left the track (derailed) or blew up (numerics): no frequency.
+    return HuntingFrequency(speed_kmh, math.nan, "limit-exceeded", verdict, math.nan, f_eig,
                             zeta, math.nan, math.nan, t, y, vd, v_u)  # fmt: skip
 
 

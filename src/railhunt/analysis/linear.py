@@ -95,12 +95,34 @@ class LinearCriticalSpeed(ResultDisplay):
         The crossing eigenvalue (1/s), real part ~0.
     is_hunting_mode : bool
         True when the crossing mode is the wheelset hunting mode.
+    crossing : str
+        What crosses: ``"hopf"`` (a complex pair: a Hopf point), ``"divergence"`` (a real
+        eigenvalue, verdict word of :mod:`railhunt.analysis.verdicts`) or ``""`` (none).
+    unstable_from_kmh : float
+        When the equilibrium is already unstable at the lowest speed searched: that speed
+        (km/h; ``speed_kmh`` is then NaN, there is no crossing); else NaN.
     """
 
     speed_kmh: float
     frequency_hz: float
     eigenvalue: complex
     is_hunting_mode: bool
+    crossing: str = ""
+    unstable_from_kmh: float = math.nan
+
+    @property
+    def text(self) -> str:
+        """The answer in words, e.g. ``"441.3 km/h (Hopf point; hunting mode at 3.98 Hz)"``."""
+        if math.isfinite(self.unstable_from_kmh):
+            kind = ("real eigenvalue: divergence" if self.crossing == "divergence"
+                    else f"complex pair at {self.frequency_hz:.2f} Hz")  # fmt: skip
+            return f"unstable at every speed from {self.unstable_from_kmh:g} km/h ({kind})"
+        if not math.isfinite(self.speed_kmh):
+            return "not found (stable at every speed searched)"
+        if self.crossing == "divergence":
+            return f"{self.speed_kmh:.1f} km/h (real eigenvalue: divergence, not a Hopf point)"
+        mode = "hunting mode" if self.is_hunting_mode else "not the hunting mode"
+        return f"{self.speed_kmh:.1f} km/h (Hopf point; {mode} at {self.frequency_hz:.2f} Hz)"
 
     def _summary(self) -> list[Row]:
         return [("linear critical speed", self.speed_kmh, "km/h"),
@@ -114,6 +136,15 @@ class LinearCriticalSpeed(ResultDisplay):
         return {"speed_kmh": (self.speed_kmh, "km/h"), "frequency_hz": (self.frequency_hz, "Hz"),
                 "eigenvalue_real": (lam.real, "1/s"), "eigenvalue_imag": (lam.imag, "1/s"),
                 "is_hunting_mode": (self.is_hunting_mode, "")}  # fmt: skip
+
+
+def crossing_index(w: np.ndarray, above: np.ndarray) -> int:
+    """Index into ``w`` (the eigenvalues at the crossing) of the one that crosses: the
+    eigenvalue nearest to the one with the largest real part just ``above`` the crossing
+    (a real eigenvalue that merely sits near zero, e.g. a weak yaw damper's relaxation,
+    does not grow across it and is not chosen)."""
+    top = above[int(np.argmax(above.real))]
+    return int(np.argmin(np.abs(w - top)))
 
 
 def eigen_analysis(
@@ -238,7 +269,12 @@ def linear_critical_speed(
     values = [growth(grid[0])]
     bracket = None
     if values[0] > 0:
-        speed = float(grid[0])
+        w, vecs = sorted_eig(jacobian_at(float(grid[0])))
+        k = int(np.argmax(w.real))
+        real = abs(w[k].imag) < 1e-9
+        return LinearCriticalSpeed(math.nan, abs(w[k].imag) / (2 * math.pi), complex(w[k]),
+                                   False, "divergence" if real else "hopf",
+                                   float(grid[0]))  # fmt: skip
     else:
         for i in range(1, grid.size):
             values.append(growth(grid[i]))
@@ -255,7 +291,7 @@ def linear_critical_speed(
             return LinearCriticalSpeed(math.nan, math.nan, complex(math.nan), False)
         speed = brentq(growth, *bracket, xtol=tol_kmh)
     w, vecs = sorted_eig(jacobian_at(speed))
-    k = int(np.argmax(w.real))
+    k = crossing_index(w, sorted_eig(jacobian_at(speed + max(tol_kmh, 0.05)))[0])
     if abs(w[k].imag) < 1e-9:
         is_hunting = False
     else:
@@ -264,4 +300,4 @@ def linear_critical_speed(
                       or moves_the_wheelsets(vecs[:model.layout.n_dof, kk], model.half_gauge,
                                              model.layout))  # fmt: skip
     return LinearCriticalSpeed(float(speed), abs(w[k].imag) / (2 * math.pi), complex(w[k]),
-                               is_hunting)  # fmt: skip
+                               is_hunting, "divergence" if abs(w[k].imag) < 1e-9 else "hopf")

@@ -7,6 +7,8 @@ from speed to speed by the modal assurance criterion of their shapes.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from railhunt.kernel.layout import LAYOUT, StateLayout
@@ -70,3 +72,14 @@ def mac(p: np.ndarray, q: np.ndarray) -> float:
     """Modal assurance criterion of two complex mode shapes (0..1)."""
     den = np.vdot(p, p).real * np.vdot(q, q).real
     return float(abs(np.vdot(p, q)) ** 2 / den) if den > 0 else 0.0
+
+
+def least_damped_rate(model: Model, speed: float, state: np.ndarray | None = None,
+                      route: np.ndarray | None = None) -> tuple[float, float]:  # fmt: skip
+    """Real parts (1/s) of the least damped oscillatory eigenvalue (NaN if none oscillates)
+    and of the least damped eigenvalue of all, of the model linearised at ``state``
+    (default the centred state) at ``speed`` (m/s)."""
+    jac = model.jacobian(speed) if state is None else model.jacobian(speed, state, route=route)
+    w = np.linalg.eigvals(jac)
+    osc = w[w.imag > 1e-6]
+    return (float(np.max(osc.real)) if osc.size else math.nan), float(np.max(w.real))

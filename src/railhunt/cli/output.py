@@ -180,6 +180,9 @@ def announce(work: Any, vehicle: Any = None, speed: float | None = None) -> None
 def linear_critical_speed_line(linear: Any, curved: bool = False) -> str:
     """The line reporting a :func:`railhunt.linear_critical_speed` result (km/h, Hz);
     ``curved``: of the steady-curving equilibrium rather than centred running."""
+    if math.isfinite(getattr(linear, "unstable_from_kmh", math.nan)) or (
+            getattr(linear, "crossing", "") == "divergence"):  # fmt: skip
+        return f"linear critical speed: {linear.text}"
     if not math.isfinite(linear.speed_kmh):
         state = "the steady-curving equilibrium" if curved else "centred running"
         return f"linear critical speed: none below 1000 km/h ({state} stays stable)"

@@ -176,9 +176,12 @@ def study_options(out_required: bool = True,
 STEP_PARAMETERS = frozenset({"C_d1", "C_d2", "K_d"})
 
 #: Simulated time (s) of one point per study output: the nonlinear critical-speed search
-#: (~8 trials), the hunting-frequency run and shooting; the linear outputs cost no steps
-#: (fitted with ``benchmarks/workload.py``, see :mod:`railhunt.workload`).
-OUTPUT_SECONDS = {"critical_speed": 120.0, "hunting_frequency": 16.0}
+#: (~8 trials), the hunting-frequency run and shooting, the fold speed's continuation; the
+#: linear and curving outputs cost no steps (fitted with ``benchmarks/workload.py``, see
+#: :mod:`railhunt.workload`).
+OUTPUT_SECONDS = {"critical_speed": 120.0, "hunting_frequency": 16.0,
+                  # the fold: ~80 orbits of ~1.2 shooting Jacobians (40 half-period flows)
+                  "fold_speed": 450.0}
 
 
 #: Points of a study whose own step is computed for its estimate (evenly spread over the

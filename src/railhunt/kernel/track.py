@@ -49,3 +49,15 @@ def alignment(s: float, params: np.ndarray, samples: np.ndarray) -> tuple[float,
         slope = (samples[i + 1] - samples[i]) / ds
         return samples[i] + w * (samples[i + 1] - samples[i]), slope
     return 0.0, 0.0
+
+
+@njit(cache=True)
+def rail_offsets(t: np.ndarray, v: float, delay: np.ndarray, track: np.ndarray,
+                 samples: np.ndarray) -> np.ndarray:  # fmt: skip
+    """Lateral alignment of the rails under each wheelset at the times ``t`` (m), wheelset
+    ``j`` at the track position ``v t - delay[j]`` (:func:`alignment`)."""
+    out = np.empty((t.shape[0], delay.shape[0]))
+    for i in range(t.shape[0]):
+        for j in range(delay.shape[0]):
+            out[i, j] = alignment(v * t[i] - delay[j], track, samples)[0]
+    return out

@@ -57,13 +57,68 @@ def wheelset_contact(
         wheelset in track coordinates, and the lateral force on each wheel (N, + left),
         creep plus normal load, whose sum is ``F_y``.
     """
-    f11, f22, f23, f33 = wr[WR.F11], wr[WR.F22], wr[WR.F23], wr[WR.F33]
-    a, r0 = wr[WR.A], wr[WR.R0]
-    n_load = wr[WR.N]
+    a = wr[WR.A]
     r_l, r_r, d_l, d_r = wheel_geometry(y_rel, wr)
     cdl, sdl = math.cos(d_l), math.sin(d_l)
     cdr, sdr = math.cos(d_r), math.sin(d_r)
     cpsi, spsi = math.cos(psi), math.sin(psi)
+    fxl, fyl, mzl, fxr, fyr, mzr, _, _, _, _, _, _ = wheel_creep(
+        r_l, r_r, cdl, sdl, cdr, sdr, cpsi, spsi, dy, yaw_rate, v, wr, q_left, q_right)
+    # Into track coordinates (Eqs. 29-30); normal loads split into mean and difference so
+    # that equal loads give the paper's N (tan delta_R - tan delta_L) exactly.
+    f_lat = (fyl * cdl + fyr * cdr) * cpsi + (fxl + fxr) * spsi
+    m_yaw = (fxr - fxl) * a + mzl * cdl + mzr * cdr
+    tl = sdl / cdl
+    tr = sdr / cdr
+    q_mean = 0.5 * (q_left + q_right)
+    q_half = 0.5 * (q_right - q_left)
+    f_grav = q_mean * (tr - tl)
+    m_grav = q_mean * a * math.sin(psi_rel) * (tl + tr)
+    if q_half != 0.0:
+        f_grav += q_half * (tr + tl)
+        m_grav += q_half * a * math.sin(psi_rel) * (tr - tl)
+    f_left = fyl * cdl * cpsi + fxl * spsi - q_left * tl
+    f_right = fyr * cdr * cpsi + fxr * spsi + q_right * tr
+    return f_lat + f_grav, m_yaw + m_grav, f_left, f_right
+
+
+@njit(cache=True)
+def wheel_creep(
+    r_l: float, r_r: float, cdl: float, sdl: float, cdr: float, sdr: float, cpsi: float,
+    spsi: float, dy: float, yaw_rate: float, v: float, wr: np.ndarray, q_left: float,
+    q_right: float,
+) -> tuple[float, ...]:
+    """Creepages and saturated creep forces of both wheels of a wheelset (Eqs. 25-28).
+
+    Parameters
+    ----------
+    r_l, r_r : float
+        Rolling radii of the left and right wheel (m).
+    cdl, sdl, cdr, sdr : float
+        Cosine and sine of the left and right contact angles.
+    cpsi, spsi : float
+        Cosine and sine of the yaw angle relative to the track's direction.
+    dy : float
+        Lateral velocity relative to the track centre line (m/s).
+    yaw_rate : float
+        Absolute yaw rate (rad/s).
+    v : float
+        Forward speed (m/s), > 0.
+    wr : numpy.ndarray
+        Wheel/rail parameter vector (slots :class:`railhunt.kernel.layout.WR`).
+    q_left, q_right : float
+        Normal loads of the left and right wheel (N).
+
+    Returns
+    -------
+    tuple of float
+        ``(Fx_L, Fy_L, Mz_L, Fx_R, Fy_R, Mz_R, xi_x_L, xi_y_L, phi_L, xi_x_R, xi_y_R,
+        phi_R)``: creep forces (N) and spin moments (N*m) in each contact's plane, after
+        saturation, and the longitudinal, lateral and spin creepages (-, -, 1/m).
+    """
+    f11, f22, f23, f33 = wr[WR.F11], wr[WR.F22], wr[WR.F23], wr[WR.F33]
+    a, r0 = wr[WR.A], wr[WR.R0]
+    n_load = wr[WR.N]
     omega = v / r0
     inv_v = 1.0 / v
     # Creepages (Eq. 25); the yaw rate is the absolute one (the track turns in a curve).
@@ -128,22 +183,7 @@ def wheelset_contact(
         fyl *= al
         fxr *= ar
         fyr *= ar
-    # Into track coordinates (Eqs. 29-30); normal loads split into mean and difference so
-    # that equal loads give the paper's N (tan delta_R - tan delta_L) exactly.
-    f_lat = (fyl * cdl + fyr * cdr) * cpsi + (fxl + fxr) * spsi
-    m_yaw = (fxr - fxl) * a + mzl * cdl + mzr * cdr
-    tl = sdl / cdl
-    tr = sdr / cdr
-    q_mean = 0.5 * (q_left + q_right)
-    q_half = 0.5 * (q_right - q_left)
-    f_grav = q_mean * (tr - tl)
-    m_grav = q_mean * a * math.sin(psi_rel) * (tl + tr)
-    if q_half != 0.0:
-        f_grav += q_half * (tr + tl)
-        m_grav += q_half * a * math.sin(psi_rel) * (tr - tl)
-    f_left = fyl * cdl * cpsi + fxl * spsi - q_left * tl
-    f_right = fyr * cdr * cpsi + fxr * spsi + q_right * tr
-    return f_lat + f_grav, m_yaw + m_grav, f_left, f_right
+    return fxl, fyl, mzl, fxr, fyr, mzr, xl, yl, sl, xr, yr, sr
 
 
 @njit(cache=True)

@@ -123,9 +123,16 @@ def stability_map_figure(results: Any) -> Figure:
                     marker="^", color=colour, ms=7, mfc="none", mew=1.5,
                     transform=ax.get_xaxis_transform(), clip_on=False)  # fmt: skip
             nothing = True
+    limit = np.array([_limit_kmh(str(row.get("message", ""))) for row in res.rows])
+    if np.isfinite(limit).any():
+        ax.plot(x[np.isfinite(limit)], limit[np.isfinite(limit)], ls="none", marker="_",
+                color="r", ms=14, mew=2.0, label="curving limit: first limit of the "
+                "validity envelope (searches stop there)")  # fmt: skip
     if nothing:
         ax.plot([], [], ls="none", marker="^", color="0.4", ms=7, mfc="none", mew=1.5,
-                label="none found (above the frame): stable at every speed tried")  # fmt: skip
+                label="none found (above the frame): stable at every speed tried"
+                if not np.isfinite(limit).any()
+                else "none found (above the frame) below the curving limit")  # fmt: skip
     failed = np.array([s == "failed" for s in status])
     if failed.any():
         ax.plot(x[failed], np.full(int(failed.sum()), 0.03), ls="none", marker="x", color="r",
@@ -144,9 +151,9 @@ def stability_map_figure(results: Any) -> Figure:
                 lw=1.2, label=f"cant deficiency {REFERENCE_DEFICIENCY * 1e3:.0f} mm "
                 f"(cant {float(cant) * 1e3:g} mm)")  # fmt: skip
     _radius_axis(ax, radius[finite], straight_x, bool((~finite).any()))
-    # The speed axis holds the critical speeds and the whole reference line (which in
-    # tight curves runs far below them).
-    speeds = [res.column(c) for c, *_ in shown] + [reference]
+    # The speed axis holds the critical speeds, the curving limits and the whole reference
+    # line (which in tight curves runs far below them).
+    speeds = [res.column(c) for c, *_ in shown] + [reference, limit]
     finite_speeds = np.concatenate([s[np.isfinite(s)] for s in speeds]) if speeds else []
     if len(finite_speeds):
         ax.set_ylim(max(0.0, 0.8 * float(np.min(finite_speeds))),
@@ -161,6 +168,14 @@ def stability_map_figure(results: Any) -> Figure:
     ax.grid(True, which="both", alpha=0.3)
     fig.legend(loc="outside lower center", ncols=2, fontsize="small")
     return fig
+
+
+def _limit_kmh(message: str) -> float:
+    """The speed of "curving limit at X km/h" in a stability map row's message (NaN)."""
+    import re
+
+    found = re.search(r"curving limit at ([0-9.]+) km/h", message)
+    return float(found.group(1)) if found else math.nan
 
 
 def _radius_axis(ax: Axes, radii: np.ndarray, straight_x: float, straight: bool) -> None:
@@ -266,6 +281,10 @@ def curve_entry_figure(run: SimulationResult, vehicle: Vehicle, *, curve: Curve 
 
     ax_q.plot(s, run["YQ_w1L"], color="tab:blue", lw=1.0, ls="--", label="left wheel")
     ax_q.plot(s, run["YQ_w1R"], color="tab:red", lw=1.0, label="right wheel")
+    from railhunt.analysis.validity import YQ_LIMIT
+
+    ax_q.axhline(YQ_LIMIT, color="k", ls=":", lw=1.0,
+                 label=f"Nadal limit Y/Q = {YQ_LIMIT:g} (EN 14363)")  # fmt: skip
     ax_q.set_ylabel("Y/Q of the leading wheelset")
     ax_q.set_title("(c) derailment quotient", loc="left", fontsize="medium")
     ax_q.set_xlabel("distance travelled by the leading wheelset (m)")

@@ -84,24 +84,52 @@ def evaluate_radius(item: tuple[int, float], vehicle: Vehicle, cant: float,
     status, message = STATUS_OK, ""
     try:
         curve = curve_for(vehicle, radius, cant, cant_deficiency, direction)
-        if "linear_critical_speed" in outputs:
-            lin = linear_critical_speed(vehicle, creep_law=creep_law, curve=curve)
+        # In a curve the map stops at the first limit of the steady-curving state.
+        limit = None if curve is None else curving_limit_of(vehicle, curve, creep_law)
+        top = 1000.0
+        if limit is not None and limit.reached:
+            top = limit.last_valid_kmh if math.isfinite(limit.last_valid_kmh) else 0.0
+            message = f"limit reached: {limit.text}"
+        if "linear_critical_speed" in outputs and top > 20.0 + 1.0:
+            lin = linear_critical_speed(vehicle, creep_law=creep_law, curve=curve,
+                                        max_kmh=top)  # fmt: skip
             row["linear_critical_speed_kmh"] = float(lin.speed_kmh)
             row["linear_frequency_hz"] = float(lin.frequency_hz)
             if not math.isfinite(lin.speed_kmh):
-                message = "the equilibrium stays stable up to 1000 km/h"
+                stays = (f"the equilibrium stays stable up to {top:g} km/h"
+                         + (", the last speed inside the validity envelope" if top < 1000.0
+                            else ""))  # fmt: skip
+                message = "; ".join(m for m in (message, stays) if m)
         if "critical_speed" in outputs:
             res = critical_speed(vehicle, excitation, creep_law=creep_law, curve=curve)
             row["critical_speed_kmh"] = float(res.speed_kmh)
+            extra = [w for w in res.warnings if w not in message]
             if not res.bracketed:
                 status = STATUS_NO_CRITICAL_SPEED
-                message = "; ".join(m for m in (message, critical_speed_message(res)) if m)
+                tried = [t.speed_kmh for t in res.trials]
+                calm = res.limit_reached and tried and all(t.verdict == "stable"
+                                                           for t in res.trials)  # fmt: skip
+                extra = [f"stable at every speed tried, up to {max(tried):g} km/h, below the "
+                         "limit" if calm else critical_speed_message(res)]  # fmt: skip
+            message = "; ".join(m for m in (message, *extra) if m)
     except Exception as exc:  # noqa: BLE001 - one bad radius must not end the study
         if interrupted(exc):
             raise KeyboardInterrupt from exc
         status, message = STATUS_FAILED, f"{type(exc).__name__}: {exc}"
     row["status"], row["message"] = status, message
     return row
+
+
+def curving_limit_of(vehicle: Vehicle, curve: Any, creep_law: str) -> Any:
+    """The first limit of the validity envelope the steady-curving state reaches between
+    20 and 800 km/h (:func:`railhunt.analysis.validity.curving_limit`), as the
+    critical-speed search in that curve finds it."""
+    from railhunt.analysis.curving import EquilibriumPath
+    from railhunt.analysis.validity import curving_limit
+    from railhunt.model import Model
+
+    path = EquilibriumPath(Model(vehicle, creep_law=creep_law), curve)
+    return curving_limit(path, 20.0, 800.0)
 
 
 def _warm_up() -> None:

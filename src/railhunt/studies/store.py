@@ -31,6 +31,7 @@ from typing import Any
 import numpy as np
 
 from railhunt.results import Columns, ResultDisplay, Row
+from railhunt.studies.outputs import NEW_OUTPUT_COLUMNS
 from railhunt.vehicle.parameters import PARAMETERS
 
 #: Output name -> its columns, in file order.
@@ -39,7 +40,12 @@ OUTPUT_COLUMNS: dict[str, tuple[str, ...]] = {
     "linear_critical_speed": ("linear_critical_speed_kmh", "linear_frequency_hz"),
     "hunting_frequency": ("frequency_speed_kmh", "hunting_frequency_hz", "frequency_source"),
 }
+#: The default outputs of a sweep.
 OUTPUTS = tuple(OUTPUT_COLUMNS)
+OUTPUT_COLUMNS.update(NEW_OUTPUT_COLUMNS)
+#: Every output a study can ask for (:mod:`railhunt.studies.outputs` adds the fold speed,
+#: the least damping ratio and the curving outputs).
+ALL_OUTPUTS = tuple(OUTPUT_COLUMNS)
 TEXT_COLUMNS = frozenset({"line", "frequency_source", "status", "message"})
 STATUS_OK, STATUS_NO_CRITICAL_SPEED, STATUS_FAILED = "ok", "no-critical-speed", "failed"
 PARQUET_INTERVAL_S = 2.0

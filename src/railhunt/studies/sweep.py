@@ -19,8 +19,16 @@ import numpy as np
 
 from railhunt.studies.design import Point, build_design, frequency_speed, parse_ties
 from railhunt.studies.execute import CONNECT_TIMEOUT, check_connect_timeout, check_workers
+from railhunt.studies.outputs import (
+    NEW_OUTPUT_COLUMNS,
+    OutputOptions,
+    empty_columns,
+    evaluate_output,
+    options_from,
+)
 from railhunt.studies.runner import run_study
 from railhunt.studies.store import (
+    ALL_OUTPUTS,
     OUTPUTS,
     STATUS_FAILED,
     STATUS_NO_CRITICAL_SPEED,
@@ -36,10 +44,16 @@ def critical_speed_message(result: Any) -> str:
     """Why a critical-speed search found no change of verdict, in words."""
     verdicts = {t.verdict for t in result.trials}
     speeds = [t.speed_kmh for t in result.trials]
+    if getattr(result, "limit_reached", False):
+        if not speeds:
+            return f"beyond the validity envelope at every speed: {result.limit.text}"
+        return (f"stable at every speed tried, up to {max(speeds):g} km/h, where the search "
+                f"stopped (limit reached: {result.limit.text})")  # fmt: skip
     if verdicts == {"stable"}:
         return f"stable at every speed tried, up to {max(speeds):g} km/h"
-    if verdicts == {"hunting"}:
-        return f"hunting at every speed tried, down to {min(speeds):g} km/h"
+    if "stable" not in verdicts:
+        return (f"not stable at any speed tried, down to {min(speeds):g} km/h "
+                f"({', '.join(sorted(verdicts))})")  # fmt: skip
     return "the search did not bracket a change of verdict"
 
 
@@ -51,6 +65,7 @@ def evaluate_point(
     excitation: object = None,
     creep_law: str | None = None,
     frequency_amplitude: float | None = None,
+    output_options: OutputOptions | None = None,
 ) -> dict[str, Any]:
     """Evaluate one point of a study: the results row of ``vehicle`` changed by the point.
 
@@ -74,6 +89,9 @@ def evaluate_point(
     frequency_amplitude : float, optional
         Initial lateral displacement of every wheelset for the hunting frequency (m);
         default: run over ``excitation``, as the critical-speed search does.
+    output_options : OutputOptions, optional
+        Settings of the outputs of :mod:`railhunt.studies.outputs` (``fold_speed``,
+        ``least_damping_ratio``, ``curving``).
 
     Returns
     -------
@@ -92,6 +110,8 @@ def evaluate_point(
                        hunting_frequency_hz=math.nan, frequency_source="")  # fmt: skip
         elif name == "critical_speed":
             row["critical_speed_kmh"] = math.nan
+        elif name in NEW_OUTPUT_COLUMNS:
+            row.update(empty_columns(name))
         else:
             row.update(linear_critical_speed_kmh=math.nan, linear_frequency_hz=math.nan)
     status, message = STATUS_OK, ""
@@ -116,6 +136,9 @@ def evaluate_point(
                                        creep_law=creep_law)  # fmt: skip
             row["hunting_frequency_hz"] = float(hf.frequency_hz)
             row["frequency_source"] = hf.source
+        for name in outputs:
+            if name in NEW_OUTPUT_COLUMNS:
+                row.update(evaluate_output(name, v, output_options, creep_law))
     except Exception as exc:  # noqa: BLE001 - one bad point must not end a study
         if interrupted(exc):
             raise KeyboardInterrupt from exc
@@ -141,11 +164,11 @@ def interrupted(exc: BaseException) -> bool:
 
 
 def _task(item: tuple[Point, float], vehicle: Vehicle, outputs: tuple[str, ...],
-          excitation: object, creep_law: str,
-          amplitude: float | None) -> dict[str, Any]:  # fmt: skip
+          excitation: object, creep_law: str, amplitude: float | None,
+          output_options: OutputOptions | None = None) -> dict[str, Any]:  # fmt: skip
     point, frequency_speed_kmh = item
     return evaluate_point(point, vehicle, outputs, frequency_speed_kmh, excitation, creep_law,
-                          amplitude)  # fmt: skip
+                          amplitude, output_options)  # fmt: skip
 
 
 def warm_up() -> None:
@@ -182,6 +205,7 @@ def sweep(
     progress: bool | Callable[[int, int], None] = False,
     connect_timeout: float = CONNECT_TIMEOUT,
     wait_for_workers: bool | float = False,
+    output_options: OutputOptions | Mapping[str, Any] | None = None,
 ) -> SweepResults:
     """Run a parameter study: critical speeds and hunting frequency at every point.
 
@@ -193,7 +217,9 @@ def sweep(
         Parameter name -> SI values (``lines``, ``grid``), or ``(low, high)``
         (``random``, ``lhs``). E.g. ``{"C_d1": np.linspace(20e3, 1000e3, 21)}``.
     outputs : sequence of str
-        Any of ``"critical_speed"``, ``"linear_critical_speed"``, ``"hunting_frequency"``.
+        Any of ``"critical_speed"``, ``"linear_critical_speed"``, ``"hunting_frequency"``,
+        ``"fold_speed"``, ``"least_damping_ratio"``, ``"curving"``
+        (:mod:`railhunt.studies.outputs`; default the first three).
     design : {"lines", "grid", "random", "lhs"}
         One parameter at a time, full factorial, uniform random or Latin hypercube
         (:func:`railhunt.studies.design.build_design`).
@@ -241,6 +267,9 @@ def sweep(
     progress : bool or callable
         Show a progress bar (points done, rate, time left) on stderr, or call
         ``progress(done, total)`` after each point.
+    output_options : OutputOptions or Mapping, optional
+        The curve of the ``curving`` outputs, the speed range of ``least_damping_ratio``
+        (:class:`railhunt.studies.outputs.OutputOptions`).
 
     Returns
     -------
@@ -248,10 +277,12 @@ def sweep(
         Rows sorted by point, with the counts of points computed, resumed and lost.
     """
     outputs = tuple(outputs)
-    bad = [o for o in outputs if o not in OUTPUTS]
+    bad = [o for o in outputs if o not in ALL_OUTPUTS]
     if bad or not outputs:
         raise ValueError(f"outputs = {list(outputs)!r} is invalid: choose one or more of "
-                         f"{', '.join(OUTPUTS)}")  # fmt: skip
+                         f"{', '.join(ALL_OUTPUTS)}")  # fmt: skip
+    options = options_from(output_options)
+    options.check_for(outputs)
     if frequency_speed_kmh is not None and not (math.isfinite(frequency_speed_kmh)
                                                 and 0 < frequency_speed_kmh <= 1000):  # fmt: skip
         raise ValueError(f"frequency_speed_kmh = {frequency_speed_kmh!r} km/h is invalid: must "
@@ -274,10 +305,11 @@ def sweep(
     speeds = {p.index: frequency_speed(p, names, frequency_speed_kmh) for p in points}
     meta = _describe(vehicle, parameters, outputs, design, samples, seed, tie_map, points,
                      speeds, frequency_amplitude, excitation, creep_law)  # fmt: skip
+    meta.update(options.describe(outputs))
     # Each task carries its own point and frequency speed (not the whole study's).
     task = functools.partial(_task, vehicle=vehicle, outputs=outputs,
                              excitation=excitation, creep_law=creep_law,
-                             amplitude=frequency_amplitude)  # fmt: skip
+                             amplitude=frequency_amplitude, output_options=options)  # fmt: skip
     return run_study([(p.index, (p, speeds[p.index])) for p in points], task, meta,
                      label="sweep", out=out, resume=resume, overwrite=overwrite, client=client,
                      scheduler=scheduler, workers=workers, progress=progress,

@@ -10,10 +10,12 @@ from railhunt.cli.commands.critical_speed import critical_speed_command
 from railhunt.cli.commands.curve import curve_command
 from railhunt.cli.commands.eigen import eigen_command
 from railhunt.cli.commands.frequency import frequency_command
+from railhunt.cli.commands.optimize import optimize_command
 from railhunt.cli.commands.parameters import parameters_command
 from railhunt.cli.commands.plot import plot_command
 from railhunt.cli.commands.reproduce import reproduce_command
 from railhunt.cli.commands.sections import sections_command
+from railhunt.cli.commands.sensitivity import sensitivity_command
 from railhunt.cli.commands.simulate import simulate_command
 from railhunt.cli.commands.spectrogram import spectrogram_command
 from railhunt.cli.commands.stability_map import stability_map_command
@@ -39,6 +41,8 @@ COMMANDS = (
     spectrogram_command,
     sweep_command,
     stability_map_command,
+    sensitivity_command,
+    optimize_command,
     sections_command,
     plot_command,
     reproduce_command,

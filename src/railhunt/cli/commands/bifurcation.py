@@ -9,6 +9,7 @@ from typing import Any
 
 import click
 
+from railhunt.analysis.verdicts import verdict_help
 from railhunt.cli.errors import user_input
 from railhunt.cli.options import (
     CURVE_RULES,
@@ -58,7 +59,7 @@ def _parse_forces(ctx: click.Context, param: click.Parameter,
     return out
 
 
-@command("bifurcation", rules=RULES,
+@command("bifurcation", rules=RULES, epilog=verdict_help(),
          short_help="Bifurcation diagram by path following (Hopf and fold speeds, type).")
 @kmh_option("--from", "from_kmh", 200.0, 2000.0, "Lowest speed of the diagram (km/h).")
 @kmh_option("--to", "to_kmh", 500.0, 2000.0, "Highest speed of the diagram (km/h).")

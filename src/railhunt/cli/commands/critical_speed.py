@@ -13,6 +13,7 @@ from typing import Any
 
 import click
 
+from railhunt.analysis.verdicts import verdict_help
 from railhunt.cli.errors import user_input
 from railhunt.cli.options import (
     CURVE_RULES,
@@ -57,7 +58,8 @@ RULES = (
 )  # fmt: skip
 
 
-@command("critical-speed", rules=RULES, short_help="Nonlinear and linear critical speeds (km/h).")
+@command("critical-speed", rules=RULES, epilog=verdict_help(),
+         short_help="Nonlinear and linear critical speeds (km/h).")
 @defect_options(
     "Peak lateral displacement of the track defect run over at each trial speed (mm), "
     "within ±50 mm."
@@ -120,10 +122,11 @@ def critical_speed_command(
     \b
     Nonlinear critical speed (the paper's method): at each trial speed the
     vehicle runs over one lateral track defect and the leading wheelset's
-    motion is judged 'stable' (decays back to the centre line) or 'hunting'
-    (settles on a limit cycle, or derails). Starting at --start the speed is
-    stepped by --step until the verdict changes, then bisected to --tol. The
-    result is the highest stable speed (km/h).
+    motion is judged 'stable' (it died out) or not: 'hunting', 'undecided',
+    'derailed' or 'blow-up' (the verdicts are defined below). Starting at
+    --start the speed is stepped by --step until the verdict changes, then
+    bisected to --tol. The result is the highest stable speed (km/h); in a
+    curve the search stops at the first limit of the validity envelope.
 
     \b
     Linear critical speed: where the least damped eigenvalue of the
@@ -150,6 +153,12 @@ def critical_speed_command(
     speed, loses stability.
     """
     vehicle = build_vehicle(vehicle_file, sets)
+    if method != "stochastic" and amplitude == 0.0:
+        from railhunt.cli.errors import CliError
+
+        raise CliError("--amplitude 0 mm is invalid: a defect of zero size excites nothing, "
+                       "so every speed would look stable; give a nonzero amplitude, within "
+                       "±50 mm")  # fmt: skip
     if method == "stochastic":
         from railhunt.cli.commands.stochastic import report_stochastic_critical_speed
 
@@ -179,7 +188,17 @@ def critical_speed_command(
             curve=curve,
         )
         on_trial(None)
-        linear = linear_critical_speed(vehicle, curve=curve)
+        limit = getattr(result, "limit", None)
+        top = 1000.0  # in a curve, the linear search stops at the first curving limit too
+        if limit is not None and limit.reached:
+            top = limit.last_valid_kmh if limit.last_valid_kmh == limit.last_valid_kmh else 0.0
+        if top > 21.0:
+            linear = linear_critical_speed(vehicle, curve=curve, max_kmh=top)
+        else:
+            from railhunt.analysis.linear import LinearCriticalSpeed
+
+            linear = LinearCriticalSpeed(float("nan"), float("nan"), complex(float("nan")),
+                                         False)  # fmt: skip
 
     if as_json:
         data = _critical_json(vehicle, excitation, tol_kmh, result, linear)
@@ -215,15 +234,18 @@ def critical_speed_command(
             fmt(trial.growth_rate, ".3g"),
             f"{trial.duration:.1f}",
             note,
-            style="red" if trial.verdict == "hunting" else "green",
+            style="green" if trial.verdict == "stable" else "red",
         )
     console = stdout_console()
     console.print(table)
     if any(_trial_note(t) == STEADY for t in result.trials):
-        console.print(f"{STEADY}: hunting on a limit cycle, the envelope stationary within "
-                      "±0.01 1/s over 3 s (a small negative growth is still a cycle); "
-                      "undecided: the verdict is the envelope's trend after 60 s")  # fmt: skip
+        from railhunt.analysis.verdicts import STEADY_CYCLE, VERDICTS
+
+        console.print(f"{STEADY}: {VERDICTS[STEADY_CYCLE]} trend at the end: the verdict was "
+                      "taken on the envelope's trend when the 60 s ran out")  # fmt: skip
     console.print(_nonlinear_line(result, tol_kmh))
+    for warning in getattr(result, "warnings", []):
+        console.print(f"[yellow]warning: {warning}[/yellow]")
     console.print(linear_critical_speed_line(linear, curved=curve is not None))
     if _above_linear(result, linear):
         console.print(f"[yellow]note: the nonlinear critical speed lies above the linear one "
@@ -238,10 +260,12 @@ STEADY = "steady cycle"
 
 def _trial_note(trial: Any) -> str:
     """The note column: the solver's status if not ok, else how the verdict was taken."""
+    if trial.verdict in ("derailed", "blow-up", "undecided"):
+        return getattr(trial, "reason", "") or trial.verdict
     if trial.status != "ok":
         return trial.status
     if not trial.decided:
-        return "undecided"
+        return "trend at the end"
     return STEADY if trial.verdict == "hunting" else ""
 
 
@@ -295,10 +319,18 @@ def _nonlinear_line(result: Any, tol_kmh: float) -> str:
             f"hunting at {result.first_hunting_kmh:g} km/h, resolution {tol_kmh:g} km/h)"
         )
     verdicts = {t.verdict for t in result.trials}
-    if verdicts == {"stable"}:
-        why = "every trial speed up to 800 km/h was stable"
+    top = max((t.speed_kmh for t in result.trials), default=800.0)
+    if getattr(result, "limit_reached", False):
+        why = (f"stable up to {top:g} km/h, where the search stopped: limit reached, "
+               f"{result.limit.text}")  # fmt: skip
+    elif verdicts == {"stable"}:
+        why = f"every trial speed up to {top:g} km/h was stable"
+    elif "stable" not in verdicts:
+        low = min((t.speed_kmh for t in result.trials), default=20.0)
+        words = ", ".join(sorted(verdicts))
+        why = f"no trial speed down to {low:g} km/h was stable ({words})"
     else:
-        why = "every trial speed down to 20 km/h was hunting"
+        why = "the search did not bracket a change of verdict"
     return f"nonlinear critical speed: not found ({why})"
 
 
@@ -311,6 +343,13 @@ def _critical_json(
         "linear_critical_speed_kmh": linear.speed_kmh,
         "linear_hunting_frequency_hz": linear.frequency_hz,
         "linear_crossing_is_hunting_mode": bool(linear.is_hunting_mode),
+        "linear_crossing": getattr(linear, "crossing", ""),
+        "linear_unstable_from_kmh": getattr(linear, "unstable_from_kmh", None),
+        "warnings": list(getattr(result, "warnings", [])),
+        "limits": ([] if getattr(result, "limit", None) is None
+                   else [lim.to_dict() for lim in result.limit.limits]),
+        "curving_limit": (None if getattr(result, "limit", None) is None
+                          else result.limit.to_dict()),
         "bracketed": bool(result.bracketed),
         "first_hunting_speed_kmh": result.first_hunting_kmh,
         "tol_kmh": tol_kmh,
@@ -329,6 +368,7 @@ def _critical_json(
                 "duration_s": t.duration,
                 "decided": bool(t.decided),
                 "status": t.status,
+                "reason": getattr(t, "reason", ""),
             }
             for t in result.trials
         ],

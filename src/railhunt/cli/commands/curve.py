@@ -155,7 +155,7 @@ def _print_state(state: Any, vehicle: Any, curve: Any) -> None:
                      f"{state.attack_angle[j] * 1e3:.3f}", f"{state.sum_Y[j] * 1e-3:.2f}")
             table.add_row(*(first if k == 0 else ("",) * 4), side,
                           f"{state.Y[j, k] * 1e-3:.2f}", f"{state.Q[j, k] * 1e-3:.2f}",
-                          f"{state.derailment_quotient[j, k]:.3f}",
+                          _marked(state.derailment_quotient[j, k]),
                           end_section=k == 1)  # fmt: skip
     out = stdout_console()
     out.print(table)
@@ -176,6 +176,15 @@ def _print_state(state: Any, vehicle: Any, curve: Any) -> None:
               f"{state.least_damping_ratio:.4f}; hunting mode "
               f"{fmt(state.hunting_frequency_hz, '.2f', 'Hz')}, damping ratio "
               f"{fmt(state.hunting_damping_ratio, '.4f')}")  # fmt: skip
+    for warning in state.warnings:
+        out.print(f"[yellow]warning: {warning}[/yellow]")
+
+
+def _marked(yq: float) -> str:
+    """A Y/Q cell, red and starred beyond Nadal's 0.8 (EN 14363)."""
+    from railhunt.analysis.validity import YQ_LIMIT
+
+    return f"[red]{yq:.3f}*[/red]" if yq > YQ_LIMIT else f"{yq:.3f}"
 
 
 def print_run_in_curve(run: Any, vehicle: Any, curve: Any) -> None:

@@ -7,6 +7,7 @@ from typing import Any
 
 import click
 
+from railhunt.analysis.verdicts import verdict_help
 from railhunt.cli.errors import CliError, user_input
 from railhunt.cli.options import (
     CURVE_LEAD_IN,
@@ -44,7 +45,8 @@ RULES = (
 )  # fmt: skip
 
 
-@command("simulate", rules=RULES, short_help="Simulate one speed: time history and phase plane.")
+@command("simulate", rules=RULES, epilog=verdict_help(),
+         short_help="Simulate one speed: time history and phase plane.")
 @click.option(
     "--speed",
     type=float,
@@ -68,9 +70,10 @@ RULES = (
     type=float,
     default=None,
     metavar="MM",
-    callback=number_range("mm", -50.0, 50.0, low_open=False, optional=True),
+    callback=number_range("mm", -20.0, 20.0, low_open=False, optional=True),
     help="Instead of a track defect, start with all four wheelsets displaced "
-    "laterally by this much (mm) on ideal track.",
+    "laterally by this much (mm) on ideal track, within ±20 mm (a start beyond it is "
+    "past the flange, toward the 25 mm derailment limit).",
 )
 @random_track_options(
     None,
@@ -130,7 +133,9 @@ def simulate_command(
     followed by ideal track; with --initial-displacement it instead starts
     with its wheelsets offset on ideal track. Below the critical speed the
     motion decays back to the centre line; above it the leading wheelset
-    settles on a hunting limit cycle (or derails beyond 25 mm).
+    settles on a hunting limit cycle, or it derails (beyond 25 mm); the
+    verdict line says which, and tells a numerical blow-up from a
+    derailment. Warnings name every limit of the validity envelope reached.
 
     \b
     With --spectrum NAME (or --irregularity FILE) it runs over an irregular
@@ -218,6 +223,8 @@ def simulate_command(
         print_run_in_curve(result, vehicle, curve)
     if irregular:
         _print_criterion(result, vehicle)
+    for warning in result.warnings:
+        click.echo(f"warning:    {warning}")
     if csv_file is not None:
         with user_input("cannot write --csv: "):
             result.to_csv(csv_file)

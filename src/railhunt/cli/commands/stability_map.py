@@ -9,6 +9,7 @@ from typing import Any
 
 import click
 
+from railhunt.analysis.verdicts import verdict_help
 from railhunt.cli.errors import CliError, user_input
 from railhunt.cli.options import (
     build_vehicle,
@@ -90,7 +91,7 @@ def _parse_radii(ctx: click.Context, param: click.Parameter, value: str) -> list
     return radii
 
 
-@command("stability-map", rules=RULES, help=_HELP,
+@command("stability-map", rules=RULES, epilog=verdict_help(), help=_HELP,
          short_help="Critical speeds against the curve radius (stability map).")
 @click.option("--radius", "radii", required=True, metavar="M,M,...", callback=_parse_radii,
               help="Curve radii (m), comma-separated, each at least 50 m; 'inf' for straight "

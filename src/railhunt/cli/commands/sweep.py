@@ -9,6 +9,7 @@ from pathlib import Path
 import click
 
 from railhunt.cli.errors import CliError, user_input
+from railhunt.cli.factors import curve_flags, output_options_from
 from railhunt.cli.options import build_vehicle, number_range, vehicle_options
 from railhunt.cli.output import fmt, json_safe, show_progress, stdout_console, traced
 from railhunt.cli.rules import Excludes, Requires, command
@@ -93,6 +94,12 @@ def _parse_ties(ctx: click.Context, param: click.Parameter,
             _known_parameter(item, name)
         out[follower] = (leader, factor)
     return out
+
+
+def parse_tie_option(ctx: click.Context, param: click.Parameter,
+                     items: tuple[str, ...]) -> dict[str, tuple[str, float]]:  # fmt: skip
+    """``--tie f22=f11`` or ``--tie f22=0.9*f11`` (see :func:`_parse_ties`)."""
+    return _parse_ties(ctx, param, items)
 
 
 def _known_parameter(item: str, name: str) -> None:
@@ -181,7 +188,8 @@ def _ranges(names, froms, tos, nums, spacing, design):
               help="F follows L at every point: f22=f11, or f22=0.9*f11 (repeatable).")
 @click.option("--outputs", default="critical_speed,linear_critical_speed,hunting_frequency",
               show_default=True, metavar="LIST",
-              help="Comma-separated outputs per point.")
+              help="Comma-separated outputs per point; also fold_speed, least_damping_ratio "
+                   "and curving (max_YQ, sum_Y_leading, wear_number in --curve-radius).")
 @click.option("--frequency-speed", "frequency_kmh", type=float, metavar="KMH",
               help="Speed of the hunting-frequency run (km/h) [default: 300 for yaw-damper "
                    "parameters, 350 otherwise].")
@@ -189,22 +197,24 @@ def _ranges(names, froms, tos, nums, spacing, design):
               callback=number_range("mm", 0.0, 20.0, optional=True),
               help="Release every wheelset from MM for the frequency run [default: run over "
                    "the critical-speed defect, as the paper's Sec. 3.3 defines it].")
+@curve_flags
 @study_options()
 @click.option("--json", "as_json", is_flag=True, help="Print a JSON summary instead of a table.")
 @vehicle_options
 def sweep_command(names, table1, per_section, froms, tos, nums, spacing, design, samples, seed,
-                  ties, outputs, frequency_kmh, amplitude_mm, out, resume, overwrite, workers,
-                  scheduler, connect_timeout, as_json, vehicle_file,
-                  sets) -> None:  # fmt: skip
+                  ties, outputs, frequency_kmh, amplitude_mm, curve_radius, cant, curve_speed,
+                  damping_range, out, resume, overwrite, workers, scheduler, connect_timeout,
+                  as_json, vehicle_file, sets) -> None:  # fmt: skip
     """``railhunt sweep`` (help text: ``_SWEEP_HELP``)."""
     from railhunt import sweep
-    from railhunt.studies.store import OUTPUTS
+    from railhunt.studies.store import ALL_OUTPUTS
 
     check_workers_option(workers)
     chosen = tuple(dict.fromkeys(o.strip() for o in outputs.split(",") if o.strip()))
-    bad = [o for o in chosen if o not in OUTPUTS]
+    bad = [o for o in chosen if o not in ALL_OUTPUTS]
     if bad or not chosen:
-        raise CliError(f"--outputs {outputs}: choose from {', '.join(OUTPUTS)}")
+        raise CliError(f"--outputs {outputs}: choose from {', '.join(ALL_OUTPUTS)}")
+    options = output_options_from(curve_radius, cant, curve_speed, damping_range)
     check_study_outputs(out, resume, overwrite)
     vehicle = build_vehicle(vehicle_file, sets)
     if table1:
@@ -230,7 +240,7 @@ def sweep_command(names, table1, per_section, froms, tos, nums, spacing, design,
                        frequency_amplitude=None if amplitude_mm is None
                        else amplitude_mm * 1e-3, out=out,
                        resume=resume, overwrite=overwrite, client=client,
-                       workers=workers, progress=progress)  # fmt: skip
+                       workers=workers, progress=progress, output_options=options)  # fmt: skip
     if as_json:
         click.echo(json.dumps(json_safe(traced({
             "file": str(out), "points": result.meta["points"], "computed": result.computed,

@@ -1,0 +1,377 @@
+"""The validity envelope: the safety and plausibility limits every answer is checked against.
+
+A result of the equations still means what its label says only inside the limits the
+field uses to judge running safety and inside the range the model is built for. Each
+check gives a :class:`Limit` (the limit, the value, the place); a result carries them as
+``limits`` and, in words, as ``warnings``.
+
+| limit | value | source |
+|---|---|---|
+| derailment quotient | ``Y/Q <= 0.8`` on every wheel (Nadal) | EN 14363 |
+| wheel unloading | ``dQ/Q0 <= 0.6`` (``Q0``: the axle's mean wheel load) | EN 14363 |
+| wheel lift | ``Q`` at the model's 1 % floor of ``Q0`` (a lifted wheel) | railhunt |
+| track shifting | ``abs(sum Y) <= 10 kN + 2 Q0 / 3`` (Prud'homme, alpha = 1) | EN 14363 |
+| cant deficiency | ``abs(I) <= 0.165 m`` (the model's range, see below) | railhunt |
+| bump stop | car body to bogie beyond the free play plus 40 mm of rubber | railhunt |
+| flange clearance | a wheelset past its flange (see below) | railhunt |
+
+The cant deficiency limit is the range railhunt's curving model (small car body roll,
+quasi-static load transfer) is meant for, that of non-tilting trains. The flange clearance
+is the lateral displacement at which the contact angle reaches the flange angle: beyond it
+the wheel climbs its flange (in a curve, a derailment). A lifted wheel's contact forces
+are no longer modelled.
+
+``Q0`` is the static wheel load ``N = W g / 2``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from railhunt.kernel.contact import wheel_geometry
+from railhunt.kernel.track import rail_offsets
+
+#: Nadal's limit of the derailment quotient (EN 14363, curves of R >= 250 m).
+YQ_LIMIT = 0.8
+#: Limit of the wheel unloading dQ/Q0 (EN 14363).
+UNLOADING_LIMIT = 0.6
+#: The kernel keeps a wheel load at this share of the static load or more (a lifted wheel).
+Q_FLOOR = 0.01
+#: Prud'homme: sum Y <= PRUDHOMME_A + PRUDHOMME_B * Q0 (N; EN 14363 with alpha = 1).
+PRUDHOMME_A, PRUDHOMME_B = 10e3, 2.0 / 3.0
+#: Largest cant deficiency railhunt's curving model is meant for (m).
+CANT_DEFICIENCY_LIMIT = 0.165
+#: Travel of the bump stop's rubber beyond its free play taken as the end of travel (m).
+BUMP_STOP_TRAVEL = 0.040
+
+#: The names of the limits, as :attr:`Limit.name` gives them.
+LIMIT_NAMES = ("Y/Q", "wheel unloading", "wheel lift", "ΣY", "cant deficiency", "bump stop",
+               "flange clearance")  # fmt: skip
+
+
+def _wheel_names(n_wheelsets: int) -> tuple[str, ...]:
+    return tuple(f"wheelset {j + 1} {side}" for j in range(n_wheelsets)
+                 for side in ("left", "right"))  # fmt: skip
+
+
+@dataclass(frozen=True)
+class Limit:
+    """One limit of the validity envelope that a result reaches.
+
+    Attributes
+    ----------
+    name : str
+        One of :data:`LIMIT_NAMES`.
+    limit : float
+        The limit (SI units, ``unit``).
+    value : float
+        The value reached (same unit).
+    unit : str
+        Unit of both.
+    place : str
+        Where: the wheel, wheelset or bogie, and the time or speed.
+    source : str
+        Where the limit comes from (``"EN 14363"`` or ``"railhunt"``: the model's range).
+    """
+
+    name: str
+    limit: float
+    value: float
+    unit: str
+    place: str
+    source: str
+
+    @property
+    def text(self) -> str:
+        """The limit in words, e.g. ``"Y/Q 0.93 > 0.8 (EN 14363) at wheelset 1 right"``."""
+        unit = f" {self.unit}" if self.unit not in ("", "1") else ""
+        if self.name == "wheel lift":
+            return (f"wheel lift: Q at the model's floor of {self.limit:.3g} N ({self.source})"
+                    f" at {self.place}")  # fmt: skip
+        return (f"{self.name} {self.value:.3g}{unit} beyond {self.limit:.3g}{unit} "
+                f"({self.source}) at {self.place}")  # fmt: skip
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready: name, limit, value, unit, place, source."""
+        return {"name": self.name, "limit": self.limit, "value": self.value,
+                "unit": self.unit, "place": self.place, "source": self.source}  # fmt: skip
+
+
+def flange_clearance(model: Any) -> float:
+    """Lateral displacement (m) at which the wheel nearer its flange reaches the flange
+    angle: the first displacement, scanning 0 to 25 mm in 0.1 mm, where its contact angle
+    is within 1 % of its largest value (both directions; the smaller); ``inf`` when the
+    contact angle does not grow (conical wheels: no flange in the geometry)."""
+    wr = model.wheel_rail_vector()
+    ys = np.arange(0.0, 0.0251, 1e-4)
+    out = math.inf
+    for sign, side in ((1.0, 2), (-1.0, 3)):
+        delta = np.array([wheel_geometry(sign * y, wr)[side] for y in ys])
+        top = float(np.max(delta))
+        if top <= 1.01 * abs(float(delta[0])) + 1e-9:
+            continue  # the contact angle does not grow (a conical wheel): no flange modelled
+        out = min(out, float(ys[np.argmax(delta >= 0.99 * top)]))
+    return out
+
+
+def _worst(values: np.ndarray, names: tuple[str, ...]) -> tuple[float, str, int]:
+    """Largest entry of a (rows, columns) array: its value, its column's name, its row."""
+    row, col = np.unravel_index(int(np.nanargmax(values)), values.shape)
+    return float(values[row, col]), names[col], int(row)
+
+
+def check_wheels(Y: np.ndarray, Q: np.ndarray, sum_Y: np.ndarray, q0: float,
+                 where: list[str] | None = None) -> list[Limit]:  # fmt: skip
+    """Limits on the wheel/rail forces: Y/Q, unloading, lift and ΣY.
+
+    Parameters
+    ----------
+    Y, Q : numpy.ndarray, shape (n, 2 * n_wheelsets)
+        Guiding forces and wheel loads (N), one row per time or state, the wheels in the
+        order wheelset 1 left, wheelset 1 right, ...
+    sum_Y : numpy.ndarray, shape (n, n_wheelsets)
+        Sum of the guiding forces of each wheelset (N).
+    q0 : float
+        Static wheel load (N).
+    where : list of str, optional
+        What each row is (e.g. ``"t = 3.2 s"``); default ``"row i"``.
+    """
+    Y, Q, sum_Y = (np.atleast_2d(np.asarray(a, dtype=float)) for a in (Y, Q, sum_Y))
+    where = where or [f"row {i}" for i in range(Y.shape[0])]
+    out: list[Limit] = []
+    _WHEELS = _wheel_names(sum_Y.shape[1])  # noqa: N806 (a table of names)
+    yq = Y / Q
+    if np.nanmax(yq) > YQ_LIMIT:
+        value, wheel, row = _worst(yq, _WHEELS)
+        out.append(Limit("Y/Q", YQ_LIMIT, value, "1", f"{wheel}, {where[row]}", "EN 14363"))
+    # Unloading against each axle's mean wheel load (its quasi-static load without the
+    # transfer between its wheels; the static load on straight track).
+    mean = 0.5 * (Q[:, 0::2] + Q[:, 1::2])
+    unloading = (np.repeat(mean, 2, axis=1) - Q) / np.repeat(mean, 2, axis=1)
+    if np.nanmax(unloading) > UNLOADING_LIMIT:
+        value, wheel, row = _worst(unloading, _WHEELS)
+        out.append(Limit("wheel unloading", UNLOADING_LIMIT, value, "1",
+                         f"{wheel}, {where[row]}", "EN 14363"))  # fmt: skip
+    if np.nanmin(Q) <= Q_FLOOR * q0 * (1.0 + 1e-9):
+        value, wheel, row = _worst(-Q, _WHEELS)
+        out.append(Limit("wheel lift", Q_FLOOR * q0, -value, "N",
+                         f"{wheel}, {where[row]} (Q clipped at 1 % of Q0: the wheel has "
+                         "lifted)", "railhunt"))  # fmt: skip
+    limit = PRUDHOMME_A + PRUDHOMME_B * q0
+    names = tuple(f"wheelset {j + 1}" for j in range(sum_Y.shape[1]))
+    if np.nanmax(np.abs(sum_Y)) > limit:
+        value, ws, row = _worst(np.abs(sum_Y), names)
+        out.append(Limit("ΣY", limit, value, "N", f"{ws}, {where[row]}", "EN 14363"))
+    return out
+
+
+def check_motion(x: np.ndarray, model: Any, where: list[str] | None = None,
+                 track_y: np.ndarray | None = None,
+                 geometry: np.ndarray | None = None) -> list[Limit]:  # fmt: skip
+    """Limits on the motion: bump stop travel and flange clearance.
+
+    Parameters
+    ----------
+    x : numpy.ndarray, shape (n, n_state) or (n_state,)
+        States (coordinates relative to the track).
+    model : Model
+        The model (its bump stop rows and contact geometry).
+    where : list of str, optional
+        What each row is.
+    track_y : numpy.ndarray, shape (n, n_wheelsets), optional
+        Lateral alignment of the rails under each wheelset (m), subtracted from its
+        displacement (a run over a track defect); default 0.
+    geometry : numpy.ndarray, shape (n, n_dof), optional
+        The curve's offsets of the coordinates (:func:`railhunt.kernel.rhs.curve_geometry`),
+        added before the bump stop deformation is taken; default 0 (straight track).
+    """
+    x = np.atleast_2d(np.asarray(x, dtype=float))
+    where = where or [f"row {i}" for i in range(x.shape[0])]
+    out: list[Limit] = []
+    system = model.system()
+    n_dof = system.linear.shape[0]  # the model's own layout: coordinates first
+    if system.stop_rows.shape[0]:
+        gap = system.stop[:, 0]
+        q = x[:, :n_dof] if geometry is None else x[:, :n_dof] + geometry[:, :n_dof]
+        travel = np.abs(q @ system.stop_rows.T)
+        limit = gap + BUMP_STOP_TRAVEL
+        over = travel - limit[None, :]
+        if np.max(over) > 0:
+            row, k = np.unravel_index(np.argmax(over), over.shape)
+            out.append(Limit("bump stop", float(limit[k]), float(travel[row, k]), "m",
+                             f"{'front' if k == 0 else 'rear'} bogie to car body, "
+                             f"{where[row]}", "railhunt"))  # fmt: skip
+    ys = x[:, system.wheelsets[:, 0]]
+    if track_y is not None:
+        ys = ys - track_y
+    clearance = flange_clearance(model)
+    if np.max(np.abs(ys)) > clearance + 1e-4:
+        row, k = np.unravel_index(np.argmax(np.abs(ys)), ys.shape)
+        out.append(Limit("flange clearance", clearance, float(abs(ys[row, k])), "m",
+                         f"wheelset {k + 1}, {where[row]}", "railhunt"))  # fmt: skip
+    return out
+
+
+def static_wheel_load(model: Any) -> float:
+    """The static wheel load ``Q0`` (N) of the model's wheel/rail forces (``N`` of the
+    kernel's wheel/rail vector: ``W g / 2`` for the paper's vehicle)."""
+    from railhunt.kernel.layout import WR
+
+    return float(model.wheel_rail_vector()[WR.N])
+
+
+def check_cant_deficiency(cant_deficiency: float, where: str) -> list[Limit]:
+    """The cant deficiency (m) against :data:`CANT_DEFICIENCY_LIMIT`."""
+    if abs(cant_deficiency) > CANT_DEFICIENCY_LIMIT:
+        return [Limit("cant deficiency", CANT_DEFICIENCY_LIMIT, abs(cant_deficiency), "m",
+                      where, "railhunt")]  # fmt: skip
+    return []
+
+
+def curving_limits(result: Any, model: Any) -> list[Limit]:
+    """Every limit a steady-curving state (:class:`~railhunt.analysis.curving.CurvingResult`)
+    reaches."""
+    where = f"{result.speed_kmh:g} km/h in the {result.curve.radius:g} m curve"
+    q0 = static_wheel_load(model)
+    out = check_wheels(result.Y.ravel()[None, :], result.Q.ravel()[None, :],
+                       result.sum_Y[None, :], q0, [where])  # fmt: skip
+    out += check_cant_deficiency(result.cant_deficiency, where)
+    from railhunt.kernel.rhs import curve_geometry
+    from railhunt.units import kmh_to_ms
+
+    v, system = model.args(kmh_to_ms(result.speed_kmh), route=result.curve.steady_route())
+    geo = curve_geometry(0.0, v, system)[None, :system.linear.shape[0]]
+    out += check_motion(result.state, model, [where], geometry=geo)
+    return out
+
+
+def run_limits(result: Any, model: Any, excitation: object = None) -> list[Limit]:
+    """Every limit a simulated run (:class:`~railhunt.simulation.SimulationResult`) reaches
+    (wheel forces from its derived channels, bump stops, flange clearance)."""
+    t = np.asarray(result.t)
+    if t.size == 0:
+        return []
+    where = _Times(t)
+    nw = model.system().wheelsets.shape[0]
+    ws = [f"w{j + 1}" for j in range(nw)]
+    q0 = static_wheel_load(model)
+    out: list[Limit] = []
+    names = set(result.derived)
+    if {f"Y_{w}{s}" for w in ws for s in "LR"} <= names:
+        Y = np.column_stack([result[f"Y_{w}{s}"] for w in ws for s in "LR"])
+        Q = np.column_stack([result[f"Q_{w}{s}"] for w in ws for s in "LR"])
+        sum_y = np.column_stack([result[f"SY_{w}"] for w in ws])
+        out += check_wheels(Y, Q, sum_y, q0, where)
+    trk = model.system(excitation)
+    track_y = rail_offsets(t, float(result.speed), trk.wheelset_delay, trk.track,
+                           trk.track_samples)  # fmt: skip
+    out += check_motion(result.x, model, where, track_y)
+    return out
+
+
+class _Times:
+    """``where[i]`` of a run: ``"t = 1.234 s"``, formatted only for the row reported."""
+
+    def __init__(self, t: np.ndarray) -> None:
+        self.t = t
+
+    def __getitem__(self, i: int) -> str:
+        return f"t = {float(self.t[i]):.3f} s"
+
+
+def warnings_of(limits: list[Limit]) -> list[str]:
+    """The limits in words, one warning each."""
+    return [f"limit reached: {lim.text}" for lim in limits]
+
+
+__all__ = ["Limit", "check_wheels", "check_motion", "check_cant_deficiency",
+           "curving_limits", "run_limits", "flange_clearance", "warnings_of"]
+
+
+@dataclass(frozen=True)
+class CurvingLimit:
+    """The first speed at which the steady-curving state leaves the validity envelope.
+
+    Attributes
+    ----------
+    speed_kmh : float
+        The lowest speed (km/h, to ``tol_kmh``) whose steady-curving state reaches a limit;
+        NaN when none is reached in the range.
+    last_valid_kmh : float
+        The highest speed below it inside the envelope (km/h); NaN if even the lowest
+        speed is beyond it.
+    limits : list of Limit
+        The limits reached at ``speed_kmh``.
+    """
+
+    speed_kmh: float
+    last_valid_kmh: float
+    limits: tuple[Limit, ...] = ()
+
+    @property
+    def reached(self) -> bool:
+        """True when a limit is reached within the range."""
+        return math.isfinite(self.speed_kmh)
+
+    @property
+    def text(self) -> str:
+        """E.g. ``"curving limit at 231 km/h: Y/Q 0.81 beyond 0.8 (EN 14363) at ..."``."""
+        if not self.reached:
+            return ""
+        return f"curving limit at {self.speed_kmh:g} km/h: " + "; ".join(
+            lim.text for lim in self.limits)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready."""
+        return {"speed_kmh": self.speed_kmh if self.reached else None,
+                "last_valid_kmh": (self.last_valid_kmh if math.isfinite(self.last_valid_kmh)
+                                   else None),
+                "text": self.text, "limits": [lim.to_dict() for lim in self.limits]}  # fmt: skip
+
+
+def curving_limit(path: Any, min_kmh: float, max_kmh: float, step_kmh: float = 10.0,
+                  tol_kmh: float = 1.0) -> CurvingLimit:  # fmt: skip
+    """The first speed at which the steady-curving state reaches a limit.
+
+    Scans the speeds ``min_kmh, min_kmh + step_kmh, ...`` up to ``max_kmh`` on the
+    equilibrium path (:class:`railhunt.analysis.curving.EquilibriumPath`), then bisects
+    to ``tol_kmh`` between the last speed inside the envelope and the first beyond it.
+    A speed with no equilibrium at all (Newton fails: far beyond the curving limit)
+    counts as beyond.
+    """
+    from railhunt.analysis.curving import CurvingError, curving_state
+    from railhunt.units import kmh_to_ms
+
+    def limits_at(kmh: float) -> tuple[Limit, ...]:
+        speed = kmh_to_ms(kmh)
+        curve = path.curve_at(speed)
+        try:
+            state = path.state(speed)
+        except CurvingError:
+            return (Limit("flange clearance", math.nan, math.nan, "m",
+                          f"{kmh:g} km/h: no steady-curving equilibrium", "railhunt"),)
+        return tuple(curving_state(path.model, speed, curve, state).limits)
+
+    grid = list(np.arange(min_kmh, max_kmh, step_kmh)) + [max_kmh]
+    last = math.nan
+    for kmh in grid:
+        found = limits_at(float(kmh))
+        if not found:
+            last = float(kmh)
+            continue
+        if math.isnan(last):
+            return CurvingLimit(float(kmh), math.nan, found)
+        lo, hi, at_hi = last, float(kmh), found
+        while hi - lo > tol_kmh + 1e-9:
+            mid = lo + tol_kmh * max(1, round((hi - lo) / (2 * tol_kmh)))
+            got = limits_at(mid)
+            if got:
+                hi, at_hi = mid, got
+            else:
+                lo = mid
+        return CurvingLimit(hi, lo, at_hi)
+    return CurvingLimit(math.nan, last, ())

@@ -1,0 +1,150 @@
+"""The outcome of an optimisation: the Pareto front, every design, the hypervolume."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from railhunt.results import Columns, ResultDisplay, Row
+
+
+def non_dominated(f: np.ndarray, feasible: np.ndarray) -> np.ndarray:
+    """Indices of the feasible rows of ``f`` (minimised objectives) that no other feasible
+    row dominates, in row order; duplicates of a front design are kept once."""
+    idx = np.flatnonzero(feasible)
+    keep = []
+    for i in idx:
+        others = f[idx]
+        dominated = np.any(np.all(others <= f[i], axis=1) & np.any(others < f[i], axis=1))
+        if not dominated and not any(np.array_equal(f[i], f[k]) for k in keep):
+            keep.append(i)
+    return np.array(keep, dtype=int)
+
+
+def hypervolumes(f: np.ndarray, feasible: np.ndarray, generation: np.ndarray,
+                 generations: int) -> list[float]:  # fmt: skip
+    """Hypervolume of the front after each generation (pymoo's HV).
+
+    Objectives are normalised by the range of the feasible designs of the whole run, and
+    the reference point is 1.1 in each (10 % beyond the worst feasible value), so the
+    numbers of one run compare with each other: 0 with no feasible design yet.
+    """
+    from pymoo.indicators.hv import HV
+
+    if not np.any(feasible):
+        return [0.0] * generations
+    fo = f[feasible]
+    lo, hi = fo.min(axis=0), fo.max(axis=0)
+    span = np.where(hi > lo, hi - lo, 1.0)
+    indicator = HV(ref_point=np.full(f.shape[1], 1.1))
+    out = []
+    for gen in range(generations):
+        mask = feasible & (generation <= gen)
+        if not np.any(mask):
+            out.append(0.0)
+            continue
+        front = f[non_dominated(f, mask)]
+        out.append(float(indicator((front - lo) / span)))
+    return out
+
+
+@dataclass(repr=False)
+class ParetoResult(ResultDisplay):
+    """Pareto front of an optimisation (:func:`railhunt.optimize`).
+
+    Attributes
+    ----------
+    factors : list of str
+        The factors.
+    objective_columns : list of str
+        The objectives' columns.
+    senses : list of str
+        ``"max"`` or ``"min"`` per objective.
+    constraints : list of str
+        The constraints, as given.
+    front : pandas.DataFrame
+        The non-dominated feasible designs: ``point``, ``generation``, the parameter
+        columns (SI), the objective and constraint columns, ``feasible``, ``status``.
+    evaluated : pandas.DataFrame
+        Every design evaluated, with the same columns.
+    hypervolume : list of float
+        Hypervolume of the front after each generation (normalised objectives,
+        :func:`hypervolumes`).
+    start : dict, optional
+        The starting vehicle's parameters and objectives (vehicle models only).
+    meta : dict
+        The study description (the results file's sidecar).
+    path : Path, optional
+        The results file.
+    """
+
+    factors: list[str]
+    objective_columns: list[str]
+    senses: list[str]
+    constraints: list[str]
+    front: Any
+    evaluated: Any
+    hypervolume: list[float]
+    start: dict[str, float] | None = None
+    meta: dict[str, Any] = field(default_factory=dict, repr=False)
+    path: Path | None = None
+
+    def _summary(self) -> list[Row]:
+        rows: list[Row] = [("factors", ", ".join(self.factors), ""),
+                           ("objectives", ", ".join(f"{s} {c}" for s, c in
+                                                    zip(self.senses, self.objective_columns,
+                                                        strict=True)), ""),
+                           ("constraints", ", ".join(self.constraints) or "-", ""),
+                           ("designs evaluated", len(self.evaluated), ""),
+                           ("feasible", int(self.evaluated["feasible"].sum()), ""),
+                           ("on the front", len(self.front), "")]  # fmt: skip
+        for c in self.objective_columns:
+            if len(self.front):
+                rows.append((f"front {c}", f"{self.front[c].min():.4g} to "
+                             f"{self.front[c].max():.4g}", ""))  # fmt: skip
+        if self.hypervolume:
+            rows.append(("hypervolume, last generation", self.hypervolume[-1], ""))
+        if self.path is not None:
+            rows.append(("file", str(self.path), ""))
+        return rows
+
+    def _columns(self) -> Columns:
+        """The front, one row per design."""
+        return {c: (self.front[c].tolist(), "") for c in self.front.columns}
+
+    def to_dataframe(self) -> Any:
+        """The front (a copy)."""
+        return self.front.copy()
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready: the front's designs, the hypervolume by generation, the start."""
+        def clean(v: Any) -> Any:
+            if isinstance(v, (np.floating, float)):
+                return None if math.isnan(float(v)) else float(v)
+            if isinstance(v, (np.integer,)):
+                return int(v)
+            if isinstance(v, np.bool_):
+                return bool(v)
+            return v
+
+        return {"factors": self.factors,
+                "objectives": [f"{s} {c}" for s, c in zip(self.senses, self.objective_columns,
+                                                          strict=True)],
+                "constraints": self.constraints,
+                "front": [{k: clean(v) for k, v in r.items()}
+                          for r in self.front.to_dict(orient="records")],
+                "evaluated": len(self.evaluated),
+                "hypervolume": self.hypervolume,
+                "start": None if self.start is None else
+                {k: clean(v) for k, v in self.start.items()}}  # fmt: skip
+
+    def figure(self, path: str | None = None) -> Any:
+        """The front with the starting vehicle marked
+        (:func:`railhunt.plots.sensitivity.plot_pareto`)."""
+        from railhunt.plots.sensitivity import plot_pareto
+
+        return plot_pareto(self, path)
