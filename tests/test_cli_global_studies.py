@@ -56,7 +56,7 @@ def test_sensitivity_json_png_and_resume(tmp_path):
     (["C_d1", "--tolerance", "0.1", "K_d", "--tolerance", "0.1", "--output", "V_cr"],
      ["--output V_cr", "critical_speed_kmh"]),
     (["C_d1", "--tolerance", "0.1", "K_d", "--tolerance", "0.1", "--samples", "100"],
-     ["samples = 100", "power of 2"]),
+     ["--samples 100", "power of 2"]),
     (["C_d3", "--tolerance", "0.1", "K_d", "--tolerance", "0.1"], ["C_d3"]),
     (["C_d1", "--tolerance", "0.1", "K_d", "--tolerance", "0.1", "--output", "wear_number"],
      ["--curve-radius"]),
