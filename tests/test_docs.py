@@ -25,6 +25,8 @@ ROOT = Path(__file__).resolve().parents[1]
 DOCS = ROOT / "docs"
 sys.path.insert(0, str(DOCS / "_hooks"))
 
+import examples as examples_hook  # noqa: E402
+import nbformat  # noqa: E402
 import offline  # noqa: E402
 import sphinx_roles  # noqa: E402
 
@@ -45,11 +47,12 @@ def _config() -> dict:
 
 
 def test_every_page_is_in_the_navigation_and_every_navigation_entry_exists() -> None:
-    nav = _nav_files(_config()["nav"])
+    nav = _nav_files(examples_hook.complete_nav(_config()["nav"]))
     pages = {str(p.relative_to(DOCS)) for p in DOCS.rglob("*.md") if "_hooks" not in p.parts}
     assert pages - set(nav) == set(), "pages missing from the nav of mkdocs.yml"
     examples = {f"examples/{p.stem}.md" for p in (ROOT / "examples").glob("[0-9][0-9]_*.py")}
-    assert examples <= set(nav), "an example is missing from the nav of mkdocs.yml"
+    assert examples <= set(nav), "an example is missing from the navigation"
+    assert len(nav) == len(set(nav)), "a page is listed twice in the navigation"
     generated = examples | {"examples/index.md"}
     assert [f for f in nav if f not in pages | generated] == []
 
@@ -73,6 +76,72 @@ def test_every_exported_name_is_in_the_api_index_and_its_module_documented() -> 
         module = getattr(railhunt, name).__module__  # where it is defined
         assert any(module == d or module.startswith(d + ".") for d in documented), (
             f"{name} ({module}) is documented on no API page")
+
+
+def test_the_examples_section_lists_every_example_without_a_list_to_maintain() -> None:
+    nav = [{"Home": "index.md"}, {"Examples": ["examples/index.md",
+                                               {"Own title": "examples/02_worn_wheel.md"}]}]
+    section = examples_hook.complete_nav(nav)[1]["Examples"]
+    uris = [next(iter(e.values())) if isinstance(e, dict) else e for e in section]
+    expected = [f"examples/{p.stem}.md" for p in examples_hook.example_paths()]
+    assert sorted(uris[1:]) == sorted(expected) and uris.count("examples/02_worn_wheel.md") == 1
+    assert {"A bifurcation diagram": "examples/03_bifurcation_diagram.md"} in section
+
+
+def _fake_executed(outputs: list[dict]) -> nbformat.NotebookNode:
+    nb = nbformat.v4.new_notebook()
+    nb.cells = [nbformat.v4.new_markdown_cell("# Title"), nbformat.v4.new_code_cell("x = 1")]
+    nb.cells[1].outputs = [nbformat.from_dict(o) for o in outputs]
+    return nb
+
+
+def test_an_example_page_shows_the_outputs_of_its_cells() -> None:
+    png = ("iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR4nGNgYGD4DwABBAEAwS2OUAAAAABJ"
+           "RU5ErkJggg==")  # a 1x1 PNG
+    nb = _fake_executed([
+        {"output_type": "stream", "name": "stdout", "text": "a < b\n"},
+        {"output_type": "display_data", "metadata": {},
+         "data": {"image/png": png, "text/plain": "<Figure>"}},
+        {"output_type": "execute_result", "execution_count": 1, "metadata": {},
+         "data": {"text/html": "<table><tr><td>1</td></tr></table>", "text/plain": "1"}},
+    ])
+    path = examples_hook.example_paths()[0]
+    text, blocks, figures = examples_hook.page(path, nb)
+    assert len(blocks) == 1 and "<!-- railhunt-output 0 -->" in text
+    assert "a &lt; b" in blocks[0] and "<table>" in blocks[0]
+    name = f"examples/{path.stem}/figure-1.png"
+    assert list(figures) == [name] and figures[name].startswith(b"\x89PNG")
+    assert f'src="{path.stem}/figure-1.png"' in blocks[0]
+    assert examples_hook.missing_outputs(figures, blocks) is None
+    page = type("Page", (), {"file": type("F", (), {"src_uri": f"examples/{path.stem}.md"})})
+    examples_hook._OUTPUTS[page.file.src_uri] = blocks
+    html = examples_hook.on_page_content("<p><!-- railhunt-output 0 --></p>", page, {}, None)
+    assert html == blocks[0]
+
+
+def test_an_example_page_without_a_table_or_figure_is_a_warning() -> None:
+    path = examples_hook.example_paths()[0]
+    text_only = _fake_executed([{"output_type": "stream", "name": "stdout", "text": "hi"}])
+    _, blocks, figures = examples_hook.page(path, text_only)
+    assert examples_hook.missing_outputs(figures, blocks) is not None
+    _, blocks, figures = examples_hook.page(path, _fake_executed([]))
+    assert blocks == [] and examples_hook.missing_outputs(figures, blocks) is not None
+
+
+def test_the_math_renderer_ships_with_the_site() -> None:
+    config = _config()
+    arithmatex = [e for e in config["markdown_extensions"]
+                  if isinstance(e, dict) and "pymdownx.arithmatex" in e]
+    assert arithmatex and arithmatex[0]["pymdownx.arithmatex"]["generic"] is True
+    for asset in (*config["extra_javascript"], *config["extra_css"]):
+        assert "//" not in asset and (DOCS / asset).is_file(), asset
+    katex = DOCS / "assets" / "katex"
+    assert "assets/katex/katex.min.js" in config["extra_javascript"]
+    assert "assets/katex/katex.min.css" in config["extra_css"]
+    assert (katex / "LICENSE").read_text(encoding="utf-8").startswith("The MIT License")
+    css = (katex / "katex.min.css").read_text(encoding="utf-8")
+    fonts = set(re.findall(r"url\((fonts/[\w.-]+)\)", css))
+    assert fonts and all((katex / f).is_file() for f in fonts)
 
 
 def test_the_site_loads_no_web_fonts() -> None:
@@ -134,3 +203,19 @@ def test_the_site_builds_strictly(tmp_path: Path) -> None:
     cli = (tmp_path / "cli.html").read_text(encoding="utf-8")
     for command in main.commands:  # generated from the commands themselves
         assert f"railhunt {command}" in cli
+    for path in examples_hook.example_paths():  # every example shows its outputs
+        html = (tmp_path / "examples" / f"{path.stem}.html").read_text(encoding="utf-8")
+        shown = re.findall(r'<div class="nb-output">(.*?)</div>\n', html, flags=re.S)
+        assert shown, f"{path.stem}: no outputs on the page"
+        assert any("<table" in block for block in shown), f"{path.stem}: no table"
+        figures = re.findall(r'<img class="nb-figure" src="([^"]+)"', html)
+        assert figures, f"{path.stem}: no figure"
+        for src in figures:
+            assert (tmp_path / "examples" / src).read_bytes().startswith(b"\x89PNG"), src
+        assert (tmp_path / "examples" / f"{path.stem}.ipynb").is_file()
+    model = (tmp_path / "model.html").read_text(encoding="utf-8")  # equations: KaTeX, local
+    assert model.count('class="arithmatex"') >= 10
+    for asset in ("assets/katex/katex.min.js", "assets/katex/katex.min.css",
+                  "assets/javascripts/katex.js"):
+        assert f'"{asset}' in model and (tmp_path / asset).is_file(), asset
+    assert (tmp_path / "assets/katex/fonts/KaTeX_Main-Regular.woff2").is_file()
