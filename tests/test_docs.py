@@ -25,6 +25,7 @@ ROOT = Path(__file__).resolve().parents[1]
 DOCS = ROOT / "docs"
 sys.path.insert(0, str(DOCS / "_hooks"))
 
+import counts  # noqa: E402
 import examples as examples_hook  # noqa: E402
 import nbformat  # noqa: E402
 import offline  # noqa: E402
@@ -144,6 +145,29 @@ def test_the_math_renderer_ships_with_the_site() -> None:
     assert fonts and all((katex / f).is_file() for f in fonts)
 
 
+def test_the_counts_the_pages_state_are_current_and_generated() -> None:
+    from railhunt.vehicle.parameters import DERIVED, PARAMETERS
+
+    expected = {"parameters": len(PARAMETERS), "derived": len(DERIVED),
+                "examples": len(examples_hook.example_paths())}
+    assert {name: f() for name, f in counts.COUNTS.items()} == expected
+    found = []
+    for page in DOCS.rglob("*.md"):
+        for name, written in counts.COUNT.findall(page.read_text(encoding="utf-8")):
+            found.append(name)
+            assert int(written) == expected[name], f"{page.name} says {written} {name}"
+    assert {"parameters", "derived", "examples"} <= set(found)
+    text = "The <!--count:parameters-->53<!--/count--> parameters"
+    assert counts.fill(text) == f"The {len(PARAMETERS)} parameters"
+    parameters_page = (DOCS / "parameters.md").read_text(encoding="utf-8")
+    assert f"<!--count:parameters-->{len(PARAMETERS)}<!--/count--> parameters" in parameters_page
+
+
+def test_an_unknown_count_is_a_warning(caplog: pytest.LogCaptureFixture) -> None:
+    assert counts.fill("<!--count:nonsense-->3<!--/count-->", "x.md") == "3"
+    assert "unknown count 'nonsense'" in caplog.text
+
+
 def test_the_site_loads_no_web_fonts() -> None:
     theme = _config()["theme"]
     assert theme["name"] == "material" and theme["font"] is False
@@ -181,6 +205,8 @@ def test_version_is_one_number_everywhere() -> None:
     paper = citation["references"][0]
     assert paper["title"].startswith("Numerical Investigation into the Critical Speed")
     assert paper["journal"] == "Mathematical Problems in Engineering" and paper["year"] == 2019
+    assert paper["doi"] == "10.1155/2019/7163732"  # CFF 1.2.0: a DOI is "10.<registrant>/<suffix>"
+    assert re.fullmatch(r"10\.\d{4,9}/[-._;()/:A-Za-z0-9]+", paper["doi"])
 
 
 def test_the_readme_has_a_cite_section_and_says_how_to_build_the_site() -> None:
