@@ -9,7 +9,9 @@ link or a page that would load something from the internet fails it.
 from __future__ import annotations
 
 import importlib.metadata
+import json
 import re
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -245,3 +247,9 @@ def test_the_site_builds_strictly(tmp_path: Path) -> None:
                   "assets/javascripts/katex.js"):
         assert f'"{asset}' in model and (tmp_path / asset).is_file(), asset
     assert (tmp_path / "assets/katex/fonts/KaTeX_Main-Regular.woff2").is_file()
+    node = shutil.which("node")
+    if node is not None:  # every formula parses with the shipped KaTeX, as in the browser
+        done = subprocess.run([node, str(ROOT / "tests" / "katex_check.js"), str(tmp_path)],
+                              capture_output=True, text=True, timeout=120, check=True)
+        checked = json.loads(done.stdout)
+        assert checked["formulas"] >= 50 and checked["failed"] == [], checked
