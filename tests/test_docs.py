@@ -103,6 +103,7 @@ def test_an_example_page_shows_the_outputs_of_its_cells() -> None:
            "RU5ErkJggg==")  # a 1x1 PNG
     nb = _fake_executed([
         {"output_type": "stream", "name": "stdout", "text": "a < b\n"},
+        {"output_type": "stream", "name": "stdout", "text": "c\n"},
         {"output_type": "display_data", "metadata": {},
          "data": {"image/png": png, "text/plain": "<Figure>"}},
         {"output_type": "execute_result", "execution_count": 1, "metadata": {},
@@ -111,7 +112,8 @@ def test_an_example_page_shows_the_outputs_of_its_cells() -> None:
     path = examples_hook.example_paths()[0]
     text, blocks, figures = examples_hook.page(path, nb)
     assert len(blocks) == 1 and "<!-- railhunt-output 0 -->" in text
-    assert "a &lt; b" in blocks[0] and "<table>" in blocks[0]
+    assert "a &lt; b\nc\n</code></pre>" in blocks[0] and "<table>" in blocks[0]
+    assert blocks[0].count("<pre") == 1  # consecutive pieces of one stream are one block
     name = f"examples/{path.stem}/figure-1.png"
     assert list(figures) == [name] and figures[name].startswith(b"\x89PNG")
     assert f'src="{path.stem}/figure-1.png"' in blocks[0]

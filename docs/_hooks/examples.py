@@ -84,6 +84,19 @@ def render_output(output: dict, figure: str | None) -> str:
     return ""
 
 
+def _merged_streams(outputs: list[dict]) -> list[dict]:
+    """The outputs with consecutive pieces of the same stream joined (as Jupyter shows them)."""
+    merged: list[dict] = []
+    for output in outputs:
+        previous = merged[-1] if merged else {}
+        if (output.get("output_type") == "stream" and previous.get("output_type") == "stream"
+                and previous.get("name") == output.get("name")):
+            merged[-1] = {**previous, "text": _text(previous["text"]) + _text(output["text"])}
+        else:
+            merged.append(output)
+    return merged
+
+
 def page(path: Path, nb: Any = None) -> tuple[str, list[str], dict[str, bytes]]:
     """The Markdown page of one example, its outputs' HTML and its figures.
 
@@ -111,7 +124,7 @@ def page(path: Path, nb: Any = None) -> tuple[str, list[str], dict[str, bytes]]:
         elif source:
             parts.append(f"```python\n{source}\n```")
             rendered = []
-            for output in cell.get("outputs", []):
+            for output in _merged_streams(cell.get("outputs", [])):
                 figure = None
                 png = output.get("data", {}).get("image/png")
                 if png is not None:
