@@ -313,7 +313,8 @@ def test_vehicle_files_written_before_the_bump_stop_still_load(tmp_path) -> None
     path = tmp_path / "old.toml"
     PAPER.to_toml(path)
     text = path.read_text(encoding="utf-8")
-    old = re.sub(r"\[parameters\.(y_bs|K_bs|K_bs3)\]\n(?:[a-z]+ = .*\n)+\n?", "", text)
+    text = text[:text.index("\n[wheel_rail]")]  # files of that time had no layout sections
+    old = re.sub(r"\[parameters\.(y_bs|K_bs|K_bs3)\]\n(?:[a-z_]+ = .*\n)+\n?", "", text)
     assert "y_bs" not in old and "K_bs" not in old
     path.write_text(old, encoding="utf-8")
     v = railhunt.load_vehicle(path)

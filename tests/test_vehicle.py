@@ -52,8 +52,9 @@ def write(tmp_path, text: str, name: str = "vehicle.toml"):
 def test_parameter_set_matches_rule_categories():
     # The paper's 53 and the secondary lateral bump stop's three (curved track, issue 14).
     assert len(PARAMETERS) == 56
-    assert list(PARAMETERS) == [f.name for f in dataclasses.fields(Vehicle)
-                                if f.name not in ("name", "description", "contact")]
+    # The paper's vehicle is a layout file whose parameter table is this one (issue 18).
+    assert list(PARAMETERS) == list(Vehicle.paper2019().values)
+    assert dict(PARAMETERS) == Vehicle.paper2019().parameters
     for name in ["M_c", "J_wz", "K_d", "C_d1", "C_d2", "F_u", "h4", "l", "l1", "W", "g"]:
         assert name in POSITIVE
     for name in ["C_px", "C_py", "C_pz", "C_sy", "C_sz", "f23", "f33", "h1", "h2", "h3", "h5",
@@ -564,7 +565,7 @@ def test_parameter_table_is_the_vehicle_fields():
     from railhunt.vehicle.parameters import VehicleFields
 
     names = [f.name for f in dataclasses.fields(VehicleFields)]
-    assert names == [f.name for f in dataclasses.fields(Vehicle)]
+    assert names[3:] == list(Vehicle.paper2019().values)
     assert names[:3] == ["name", "description", "contact"] and names[3:] == list(PARAMETERS)
     # The paper's parameters are required; those added later (the bump stop) have defaults,
     # so vehicle files written before them still load.

@@ -7,6 +7,9 @@ twice.
 
 Channels (SI units)
 -------------------
+Every layout has these for each of its wheelsets (``w1`` ... ``wN``, tags of its
+bodies) and its bogie frames (``t1`` ...); the paper's vehicle has four and two.
+
 ``SY_w1`` ... ``SY_w4``
     Sum of the guiding forces of wheelset *j*, ΣY (N): the total lateral force the
     wheelset exerts on the track (the "track-shifting force" of EN 14363), + toward +y
@@ -30,37 +33,58 @@ Channels (SI units)
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
-from railhunt.kernel.layout import LAYOUT, SystemArrays
+from railhunt.kernel.layout import LAYOUT, StateLayout, SystemArrays
 from railhunt.kernel.rhs import derived
 
-_WHEELSETS = tuple(w.replace("wheelset", "w") for w in LAYOUT.wheelsets)  # "w1" ... "w4"
-_ACC_NAMES = ("ddy_t1", "ddy_t2", "ddpsi_t1", "ddpsi_t2")
-#: Names of the columns of the kernel's ``derived`` array, in order.
-_KERNEL_COLUMNS: tuple[str, ...] = (
-    tuple(f"SY_{w}" for w in _WHEELSETS)
-    + tuple(f"Y_{w}L" for w in _WHEELSETS)
-    + tuple(f"Y_{w}R" for w in _WHEELSETS)
-    + tuple(f"Q_{w}L" for w in _WHEELSETS)
-    + tuple(f"Q_{w}R" for w in _WHEELSETS)
-    + _ACC_NAMES
-)
-#: Names of the derived channels, in the order of :func:`derived_channels`.
-CHANNEL_NAMES: tuple[str, ...] = (
-    tuple(f"SY_{w}" for w in _WHEELSETS)
-    + _ACC_NAMES
-    + tuple(f"{kind}_{w}{side}" for kind in ("Y", "Q", "YQ") for w in _WHEELSETS
-            for side in "LR")  # fmt: skip
-)
 #: Unit of each derived channel (by the name's prefix).
 CHANNEL_UNITS = {"SY": "N", "ddy": "m/s^2", "ddpsi": "rad/s^2", "Y": "N", "Q": "N", "YQ": "1"}
-_ACC = np.array([LAYOUT.dof(n[2:]) for n in _ACC_NAMES])  # "ddy_t1" -> "y_t1"
+
+
+def _is_frame(body: object) -> bool:
+    kind = getattr(body, "kind", "")
+    return kind == "frame" or (not kind and body.name.startswith("bogie"))  # type: ignore[attr-defined]
+
+
+@lru_cache(maxsize=64)
+def _plan(layout: StateLayout) -> tuple[tuple[str, ...], tuple[str, ...], tuple[str, ...],
+                                        np.ndarray]:  # fmt: skip
+    """Wheelset tags, the kernel's column names, the channel names and the acceleration
+    indices of a layout: every wheelset's forces, every bogie frame's accelerations."""
+    tags = tuple(b.tag for b in layout.bodies if b.is_wheelset)
+    frames = [b for b in layout.bodies if _is_frame(b)]
+    acc = tuple(f"dd{c}_{b.tag}" for c in ("y", "psi") for b in frames if c in b.coordinates)
+    kernel = (tuple(f"SY_{w}" for w in tags) + tuple(f"Y_{w}L" for w in tags)
+              + tuple(f"Y_{w}R" for w in tags) + tuple(f"Q_{w}L" for w in tags)
+              + tuple(f"Q_{w}R" for w in tags) + acc)  # fmt: skip
+    names = (tuple(f"SY_{w}" for w in tags) + acc
+             + tuple(f"{kind}_{w}{side}" for kind in ("Y", "Q", "YQ") for w in tags
+                     for side in "LR"))  # fmt: skip
+    index = np.array([layout.dof(n.split("_", 1)[0][2:] + "_" + n.split("_", 1)[1])
+                      for n in acc], dtype=np.int64)  # "ddy_t1" -> "y_t1"  # fmt: skip
+    return tags, kernel, names, index
+
+
+_WHEELSETS, _KERNEL_COLUMNS, CHANNEL_NAMES, _ACC = _plan(LAYOUT)
+_ACC_NAMES = tuple(n for n in CHANNEL_NAMES if n.startswith("dd"))
+#: Names of the derived channels of the paper's vehicle, in the order of
+#: :func:`derived_channels` (:func:`channel_names` gives them for any layout).
+
+
+
+def channel_names(layout: StateLayout = LAYOUT) -> tuple[str, ...]:
+    """Names of the derived channels of a layout: ``SY_`` of each wheelset, the bogie
+    frames' accelerations ``ddy_``, ``ddpsi_``, then ``Y_``, ``Q_``, ``YQ_`` of each wheel."""
+    return _plan(layout)[2]
 
 
 def derived_channels(
-    t: np.ndarray, x: np.ndarray, speed: float, system: SystemArrays
-) -> dict[str, np.ndarray]:
+    t: np.ndarray, x: np.ndarray, speed: float, system: SystemArrays,
+    layout: StateLayout = LAYOUT,
+) -> dict[str, np.ndarray]:  # fmt: skip
     """Guiding forces, wheel loads and bogie accelerations along a run.
 
     Parameters
@@ -73,17 +97,20 @@ def derived_channels(
         Forward speed of the run (m/s).
     system : SystemArrays
         The model's arrays with the run's track input (:meth:`railhunt.model.Model.system`).
+    layout : StateLayout
+        The model's state layout (``model.layout``; default: the paper's vehicle).
 
     Returns
     -------
     dict
         Channel name -> values (see the module docstring for names and units).
     """
+    tags, kernel, names, acc = _plan(layout)
     t = np.ascontiguousarray(t, dtype=np.float64)
     x = np.ascontiguousarray(x, dtype=np.float64)
-    res = derived(t, x, speed, system, _ACC)
-    cols = {name: res[:, k].copy() for k, name in enumerate(_KERNEL_COLUMNS)}
-    for w in _WHEELSETS:
+    res = derived(t, x, speed, system, acc)
+    cols = {name: res[:, k].copy() for k, name in enumerate(kernel)}
+    for w in tags:
         for side in "LR":
             cols[f"YQ_{w}{side}"] = cols[f"Y_{w}{side}"] / cols[f"Q_{w}{side}"]
-    return {name: cols[name] for name in CHANNEL_NAMES}
+    return {name: cols[name] for name in names}

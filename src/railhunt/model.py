@@ -24,30 +24,17 @@ from railhunt import track as _track
 from railhunt.kernel.creep import CREEP_LAWS
 from railhunt.kernel.damper import damper_velocity_array
 from railhunt.kernel.layout import (
-    BODY_INDEX,
-    LAYOUT,
-    N_DAMPER,
     N_ROUTE,
     N_STATE,
     N_WR,
     STATE_NAMES,
-    WHEELSET_INDEX,
     WHEELSET_Y,
     WR,
     Y_W1,
-    DamperParam,
-    StopParam,
+    StateLayout,
     SystemArrays,
 )
 from railhunt.kernel.rhs import jacobian, rhs, wheelset_forces
-from railhunt.suspension import (
-    assemble,
-    bump_stop_rows,
-    gravity_stiffness,
-    mass_matrix_diagonal,
-    suspension_elements,
-    yaw_damper_rows,
-)
 from railhunt.vehicle import Vehicle
 
 # Kept importable from here (older scripts and the docs use railhunt.model.<name>).
@@ -64,11 +51,12 @@ class Model:
     ----------
     vehicle : Vehicle
         Validated vehicle description (SI).
-    creep_law : {"heuristic", "heuristic-per-wheel", "linear", "polach"}
+    creep_law : {"heuristic", "heuristic-per-wheel", "linear", "polach", "vermeulen-johnson"}
         ``"heuristic"``: the paper's Eq. 28 with one factor per wheelset from the mean of
         both wheels' ``beta``; ``"heuristic-per-wheel"``: one factor per wheel;
         ``"linear"``: Kalker's linear law without saturation; ``"polach"``: Polach's
-        saturation per wheel (see :mod:`railhunt.kernel.creep`).
+        saturation per wheel; ``"vermeulen-johnson"``: Eq. 28's cubic per wheel on the
+        creepage forces without spin (see :mod:`railhunt.kernel.creep`).
     contact : railhunt.contact.geometry.ContactGeometry, optional
         Tabulated contact geometry (uniform ``y`` grid) used instead of the vehicle's
         polynomials (Eqs. 32-33): ``r_L, r_R, delta_L, delta_R`` interpolated linearly in
@@ -89,112 +77,111 @@ class Model:
     """
 
     def __init__(
-        self, vehicle: Vehicle, creep_law: str = "heuristic", contact: object = None
+        self, vehicle: Vehicle, creep_law: str | None = None, contact: object = None
     ) -> None:
-        if creep_law not in CREEP_LAWS:
+        if creep_law is not None and creep_law not in CREEP_LAWS:
             raise ValueError(
                 f"creep_law = {creep_law!r} is invalid: must be one of {sorted(CREEP_LAWS)}"
             )
+        asm = vehicle.assembly
         self.vehicle = vehicle
-        self.creep_law = creep_law
+        #: The state vector's slots (bodies, coordinates, dampers) of this vehicle.
+        self.layout: StateLayout = asm.layout
+        self.creep_law = creep_law if creep_law is not None else asm.creep_laws[0]
         if contact is None and vehicle.contact is not None:
             contact = vehicle.contact.geometry()
+        wr = asm.wheel_rail.copy()
+        if creep_law is not None:
+            wr[:, WR.CREEP_LAW] = CREEP_LAWS[creep_law]
         if contact is not None:
             # The creepages are measured from r0: a centred wheelset on a table whose
             # radius differs from r0 would carry a steady longitudinal creepage that eats
             # into the saturation of every creep force.
             r_centre = float(np.interp(0.0, contact.y, contact.r_left))
-            if abs(r_centre - vehicle.r0) > 1e-6:
+            r0 = float(wr[0, WR.R0])
+            if abs(r_centre - r0) > 1e-6:
                 raise ValueError(
-                    f"r0 = {vehicle.r0!r} m is invalid with this contact geometry: must "
+                    f"r0 = {r0!r} m is invalid with this contact geometry: must "
                     f"equal its centred rolling radius {r_centre:.9f} m within 1 um "
                     f"(set r0 = {r_centre!r})"
                 )
+            table = _contact_table(contact)
+            wr = wheel_rail_rows([np.concatenate([row[:WR.TABLE], table]) for row in wr])
         self.contact = contact
-        self.mass = mass_matrix_diagonal(vehicle)
-        k_susp, self.C = assemble(suspension_elements(vehicle))
-        self.K = k_susp + gravity_stiffness(vehicle)
+        self.mass = asm.mass
+        k_susp, self.C = asm.K_suspension, asm.C
+        self.K = k_susp + asm.gravity
         inv_m = 1.0 / self.mass
-        bd = yaw_damper_rows(vehicle)
-        dpar = np.zeros((N_DAMPER, len(DamperParam)))
-        dpar[:, DamperParam.K_D] = vehicle.K_d
-        dpar[:, DamperParam.C_D1] = vehicle.C_d1
-        dpar[:, DamperParam.C_D2] = vehicle.C_d2
-        dpar[:, DamperParam.F_U] = vehicle.F_u
-        rows = bump_stop_rows(vehicle)
-        stop = np.zeros((rows.shape[0], len(StopParam)))
-        stop[:, StopParam.GAP] = vehicle.y_bs
-        stop[:, StopParam.K1] = vehicle.K_bs
-        stop[:, StopParam.K3] = vehicle.K_bs3
+        bd, rows = asm.damper_rows, asm.stop_rows
         trk, trs = _track.encode(None)
         self._system = SystemArrays(
             linear=np.ascontiguousarray(-inv_m[:, None] * np.hstack([self.K, self.C])),
             damper_rows=np.ascontiguousarray(bd),
             damper_acc=np.ascontiguousarray(-inv_m[:, None] * bd.T),
-            damper=dpar,
-            wheel_rail=self.wheel_rail_vector(),
-            wheelsets=WHEELSET_INDEX.copy(),
-            wheelset_delay=self.wheelset_offsets(),
+            damper=np.ascontiguousarray(asm.damper),
+            wheel_rail=np.ascontiguousarray(wr),
+            wheelsets=asm.wheelsets.copy(),
+            wheelset_delay=asm.wheelset_delay.copy(),
             track=trk,
             track_samples=trs,
             stop_rows=np.ascontiguousarray(rows),
             stop_acc=np.ascontiguousarray(-inv_m[:, None] * rows.T),
-            stop=stop,
+            stop=np.ascontiguousarray(asm.stop),
             route=np.zeros((0, N_ROUTE)),
-            bodies=BODY_INDEX.copy(),
-            body_delay=self.body_offsets(),
+            bodies=asm.bodies.copy(),
+            body_delay=asm.body_delay.copy(),
             suspension=np.ascontiguousarray(-inv_m[:, None] * np.hstack([k_susp, self.C])),
             scratch=np.zeros(3 * len(self.mass)),
+            stop_wheelset=asm.stop_track.copy(),
         )
+
+    @property
+    def half_gauge(self) -> float:
+        """Half the distance between the leading wheelset's contact points (m)."""
+        return float(self._system.wheel_rail[0, WR.A])
+
+    @property
+    def gravity(self) -> float:
+        """Acceleration of gravity of the model (m/s^2)."""
+        return float(self._system.wheel_rail[0, WR.G])
+
+    @property
+    def n_state(self) -> int:
+        """Length of this model's state vector."""
+        return self.layout.n_state
 
     # The kernel's arrays under their short historical names.
     lin = property(lambda self: self._system.linear)
     bd = property(lambda self: self._system.damper_rows)
     dd = property(lambda self: self._system.damper_acc)
     dpar = property(lambda self: self._system.damper)
-    wr = property(lambda self: self._system.wheel_rail)
+    #: The first wheelset's wheel/rail row (every wheelset of this vehicle has the same).
+    wr = property(lambda self: self._system.wheel_rail[0])
 
     def wheel_rail_vector(self) -> np.ndarray:
-        """Wheel/rail parameters packed for the kernel (slots :class:`WR`)."""
-        v = self.vehicle
-        wr = np.zeros(N_WR)
-        wr[WR.F11], wr[WR.F22], wr[WR.F23], wr[WR.F33] = v.f11, v.f22, v.f23, v.f33
-        wr[WR.MU], wr[WR.N], wr[WR.A], wr[WR.R0] = v.mu, v.N, v.a, v.r0
-        wr[WR.LAMBDA1:WR.LAMBDA5 + 1] = [v.lambda1, v.lambda2, v.lambda3, v.lambda4, v.lambda5]
-        wr[WR.D0], wr[WR.D1], wr[WR.D4], wr[WR.D5] = v.d0, v.d1, v.d4, v.d5
-        wr[WR.DELTA_MAX] = v.delta_max
-        wr[WR.CREEP_LAW] = CREEP_LAWS[self.creep_law]
-        wr[WR.INV_MW], wr[WR.INV_JW] = 1.0 / v.M_w, 1.0 / v.J_wz
-        wr[WR.W], wr[WR.G], wr[WR.MH] = v.W, v.g, self.mass_height()
-        if self.contact is not None:
-            wr = np.concatenate([wr[:WR.TABLE], _contact_table(self.contact)])
-        return wr
+        """The leading wheelset's wheel/rail parameters (slots :class:`WR`)."""
+        return self._system.wheel_rail[0].copy()
 
     def wheelset_offsets(self) -> np.ndarray:
-        """Distance of each wheelset behind the leading one (m): 0, 2*l1, 2*l, 2*l + 2*l1."""
-        v = self.vehicle
-        return np.array([0.0, 2 * v.l1, 2 * v.l, 2 * v.l + 2 * v.l1])
+        """Distance of each wheelset behind the leading one (m), from the bodies' ``x``
+        (0, 2*l1, 2*l, 2*l + 2*l1 for the paper's vehicle)."""
+        return self._system.wheelset_delay.copy()
 
     def body_offsets(self) -> np.ndarray:
-        """Distance of each body's centre behind the leading wheelset (m), in layout order:
-        car body ``l + l1``, bogies ``l1`` and ``2 l + l1``, then the wheelsets."""
-        v = self.vehicle
-        where = {"car": v.l + v.l1, "bogie1": v.l1, "bogie2": 2 * v.l + v.l1}
-        ws = dict(zip(LAYOUT.wheelsets, self.wheelset_offsets(), strict=True))
-        return np.array([where.get(b, ws.get(b)) for b in LAYOUT.body_names], dtype=float)
+        """Distance of each moving body's centre behind the leading wheelset (m), in layout
+        order (car body ``l + l1``, bogies ``l1`` and ``2 l + l1``, then the wheelsets for
+        the paper's vehicle)."""
+        return self._system.body_delay.copy()
 
     def mass_height(self) -> float:
-        """Sum of mass times height above the rail carried by one wheelset (kg*m).
+        """Sum of mass times height above the rail carried by the leading wheelset (kg*m).
 
-        A quarter of the car body at ``r0 + h4 + h3 + h1``, half a bogie frame at
-        ``r0 + h4`` and the wheelset at ``r0``: the heights follow from the paper's
-        vertical distances (1.59 m and 0.58 m for its vehicle). Sets the load transfer
-        between the wheels in a curve.
+        Each body's share of the weight that rests on the wheelset, times its height
+        (docs/model.md, "Vehicle layouts"): for the paper's vehicle a quarter of the car
+        body at ``r0 + h4 + h3 + h1``, half a bogie frame at ``r0 + h4`` and the wheelset
+        at ``r0``. Sets the load transfer between the wheels in a curve.
         """
-        v = self.vehicle
-        h_bogie = v.r0 + v.h4
-        h_car = h_bogie + v.h3 + v.h1
-        return v.M_c / 4 * h_car + v.M_t / 2 * h_bogie + v.M_w * v.r0
+        return float(self._system.wheel_rail[0, WR.MH])
 
     def system(self, excitation: object = None, route: np.ndarray | None = None) -> SystemArrays:
         """The kernel's bundle of arrays, with a track input and a route.
@@ -246,7 +233,7 @@ class Model:
         route: np.ndarray | None = None,
     ) -> np.ndarray:  # fmt: skip
         """dx/dt at state ``x`` (convenience wrapper of the kernel's ``rhs``)."""
-        out = np.empty(N_STATE)
+        out = np.empty(self.layout.n_state)
         rhs(t, np.ascontiguousarray(x, dtype=np.float64), *self.args(speed, excitation, route),
             out)  # fmt: skip
         return out
@@ -255,7 +242,8 @@ class Model:
                  route: np.ndarray | None = None, t: float = 0.0) -> np.ndarray:  # fmt: skip
         """Jacobian of the system without track input at ``x`` (default: centred), at
         time ``t`` on ``route`` (default: straight track)."""
-        x0 = np.zeros(N_STATE) if x is None else np.ascontiguousarray(x, dtype=np.float64)
+        n = self.layout.n_state
+        x0 = np.zeros(n) if x is None else np.ascontiguousarray(x, dtype=np.float64)
         return jacobian(x0, *self.args(speed, route=route), t)
 
     def damper_velocities(self, damper_forces: np.ndarray) -> np.ndarray:
@@ -266,11 +254,25 @@ class Model:
         """
         f = np.asarray(damper_forces, dtype=np.float64)
         out = np.empty_like(f)
-        flat_f, flat_o = f.reshape(-1, N_DAMPER), out.reshape(-1, N_DAMPER)
-        for d in range(N_DAMPER):
+        n_damper = self.layout.n_damper
+        if n_damper == 0:
+            return out
+        flat_f, flat_o = f.reshape(-1, n_damper), out.reshape(-1, n_damper)
+        for d in range(n_damper):
             _, c1, c2, fu = self.dpar[d]
             flat_o[:, d] = damper_velocity_array(flat_f[:, d], c1, c2, fu)
         return out
+
+
+def wheel_rail_rows(rows: list[np.ndarray]) -> np.ndarray:
+    """One wheel/rail row per wheelset, padded with zeros to the longest (``SystemArrays.
+    wheel_rail``, shape ``(n_wheelsets, width)``); each row's ``WR.TABLE`` slot says how
+    much of its contact table is used."""
+    width = max((len(r) for r in rows), default=N_WR)
+    out = np.zeros((len(rows), width))
+    for j, r in enumerate(rows):
+        out[j, : len(r)] = r
+    return out
 
 
 def _contact_table(contact: object) -> np.ndarray:

@@ -23,8 +23,17 @@ __all__ = ["provenance", "vehicle_block", "vehicle_fingerprint"]
 
 def vehicle_block(vehicle: Vehicle) -> dict[str, Any]:
     """What describes a vehicle's numbers: ``{"parameters": {name: SI value}, "contact":
-    repr of its contact description}`` (a study sidecar's ``vehicle`` entry)."""
-    return {"parameters": vehicle.as_dict(), "contact": repr(vehicle.contact)}
+    repr of its contact description}`` (a study sidecar's ``vehicle`` entry), and for a
+    layout other than the paper's vehicle ``"layout"``: the SHA-256 of its bodies,
+    elements and wheel/rail data."""
+    block: dict[str, Any] = {"parameters": vehicle.as_dict(), "contact": repr(vehicle.contact)}
+    from railhunt.vehicle.files import paper_layout
+
+    layout = vehicle.layout
+    if layout != paper_layout():
+        text = repr((layout.bodies, layout.elements, layout.wheel_rail, layout.gravity))
+        block["layout"] = "sha256:" + hashlib.sha256(text.encode()).hexdigest()[:16]
+    return block
 
 
 def vehicle_fingerprint(vehicle: Vehicle) -> str:

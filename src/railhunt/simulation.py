@@ -14,15 +14,7 @@ import numpy as np
 from railhunt.channels import CHANNEL_UNITS, derived_channels
 from railhunt.curve import Curve
 from railhunt.kernel import integrators
-from railhunt.kernel.layout import (
-    DAMPER_NAMES,
-    FORCES,
-    N_DAMPER,
-    N_DOF,
-    N_STATE,
-    STATE_NAMES,
-    DamperParam,
-)
+from railhunt.kernel.layout import LAYOUT, N_DAMPER, N_STATE, DamperParam, StateLayout
 from railhunt.model import Model
 from railhunt.results import Columns, ResultDisplay, Row
 from railhunt.track import InitialDisplacement, SampledTrack, SingleDefect, check_excitation
@@ -68,6 +60,9 @@ class SimulationResult(ResultDisplay):
         Derived channels (:mod:`railhunt.channels`): sums of guiding forces ``SY_w1..4``
         (N) and bogie frame accelerations ``ddy_t1``, ``ddy_t2`` (m/s^2), ``ddpsi_t1``,
         ``ddpsi_t2`` (rad/s^2).
+    layout : StateLayout
+        The vehicle's state layout (names of the states and dampers); default: the
+        paper's vehicle.
     """
 
     t: np.ndarray
@@ -79,6 +74,7 @@ class SimulationResult(ResultDisplay):
     excitation_end: float = 0.0
     stats: dict = field(default_factory=dict)
     derived: dict = field(default_factory=dict)
+    layout: StateLayout = LAYOUT
 
     @property
     def speed_kmh(self) -> float:
@@ -94,13 +90,15 @@ class SimulationResult(ResultDisplay):
     def channel_names(self) -> tuple[str, ...]:
         """All channel names: states (``y_w1``, ``dy_w1``, ``F_d1``, ...), ``v_d1..v_d4``
         and the derived channels (``SY_w1``, ..., ``ddy_t1``, ...)."""
-        return STATE_NAMES + tuple("v_" + n for n in DAMPER_NAMES) + tuple(self.derived)
+        lay = self.layout
+        return lay.state_names + tuple("v_" + n for n in lay.dampers) + tuple(self.derived)
 
     def __getitem__(self, name: str) -> np.ndarray:
-        if name in STATE_NAMES:
-            return self.x[:, STATE_NAMES.index(name)]
-        if name.startswith("v_") and name[2:] in DAMPER_NAMES:
-            return self.damper_velocity[:, DAMPER_NAMES.index(name[2:])]
+        names, dampers = self.layout.state_names, self.layout.dampers
+        if name in names:
+            return self.x[:, names.index(name)]
+        if name.startswith("v_") and name[2:] in dampers:
+            return self.damper_velocity[:, dampers.index(name[2:])]
         if name in self.derived:
             return self.derived[name]
         raise KeyError(
@@ -160,12 +158,15 @@ class SimulationResult(ResultDisplay):
 
 
 def _initial_state(model: Model, excitation: object, x0: np.ndarray | None) -> np.ndarray:
-    x = np.zeros(N_STATE) if x0 is None else np.array(x0, dtype=np.float64)
-    if x.shape != (N_STATE,):
-        raise ValueError(f"x0 has shape {x.shape}: must be ({N_STATE},)")
+    n = model.layout.n_state
+    x = np.zeros(n) if x0 is None else np.array(x0, dtype=np.float64)
+    if x.shape != (n,):
+        raise ValueError(f"x0 has shape {x.shape}: must be ({n},)")
     if isinstance(excitation, InitialDisplacement):
+        ys = model.layout.wheelset_y
         for w in excitation.wheelsets:
-            x[STATE_NAMES.index(f"y_w{w}")] += excitation.amplitude
+            if w <= len(ys):
+                x[ys[w - 1]] += excitation.amplitude
     return x
 
 
@@ -176,9 +177,9 @@ def excitation_end_time(model: Model, excitation: object, speed: float) -> float
     return 0.0
 
 
-def default_atol() -> np.ndarray:
+def default_atol(layout: StateLayout = LAYOUT) -> np.ndarray:
     """Absolute tolerances per state for the adaptive integrator (state units)."""
-    return integrators.default_atol(N_DOF, N_DAMPER)
+    return integrators.default_atol(layout.n_dof, layout.n_damper)
 
 
 class StiffDamperError(ValueError):
@@ -195,7 +196,7 @@ def model_step(model: Model, speed: float, safety: float = 0.6, dt_max: float = 
     ``safety`` over the largest eigenvalue modulus of the Jacobian of the coordinates and
     rates with the damper forces held (their own rows and columns left out), capped at
     ``dt_max``."""
-    n = 2 * N_DOF
+    n = 2 * model.layout.n_dof
     rate = float(np.max(np.abs(np.linalg.eigvals(model.jacobian(speed)[:n, :n]))))
     return min(dt_max, safety / rate)
 
@@ -220,8 +221,8 @@ def auto_step(model: Model, speed: float, safety: float = 0.6, dt_max: float = 1
     rate = float(np.max(np.abs(np.linalg.eigvals(model.jacobian(speed)))))
     d = model.dpar
     k_d = d[:, DamperParam.K_D]
-    rate_1 = float(np.max(k_d / d[:, DamperParam.C_D1]))
-    rate_2 = float(np.max(k_d / d[:, DamperParam.C_D2]))
+    rate_1 = float(np.max(k_d / d[:, DamperParam.C_D1], initial=0.0))
+    rate_2 = float(np.max(k_d / d[:, DamperParam.C_D2], initial=0.0))
     dt = min(dt_max, safety / max(rate, rate_1, rate_2))
     rest = model_step(model, speed, safety, dt_max)
     if dt < rest / STIFF_RATIO:
@@ -376,7 +377,7 @@ def simulate(
     output_dt: float | None = None,
     rtol: float = 1e-6,
     x0: np.ndarray | None = None,
-    creep_law: str = "heuristic",
+    creep_law: str | None = None,
     y_limit: float = Y_LIMIT,
     model: Model | None = None,
     curve: Curve | None = None,
@@ -449,10 +450,11 @@ def simulate(
         model, speed, duration, x_init, excitation=excitation, method=method, dt=dt,
         output_dt=output_dt, rtol=rtol, y_limit=y_limit, route=route,
     )  # fmt: skip
-    vd = model.damper_velocities(x[:, FORCES])
+    vd = model.damper_velocities(x[:, model.layout.forces])
     return SimulationResult(
         t=t, x=x, speed=speed, status=integrators.STATUS_NAMES[code],
         message=integrators.status_message(code, t[-1], y_limit), damper_velocity=vd,
         excitation_end=excitation_end_time(model, excitation, speed), stats=stats,
-        derived=derived_channels(t, x, *model.args(speed, excitation, route)),
+        derived=derived_channels(t, x, *model.args(speed, excitation, route), model.layout),
+        layout=model.layout,
     )  # fmt: skip

@@ -31,7 +31,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from railhunt.kernel.damper import damper_force_steady, damper_velocity
-from railhunt.kernel.layout import BODY_DOFS, DAMPER_NAMES, DOF_NAMES, LAYOUT, N_DAMPER, N_DOF
+from railhunt.kernel.layout import (
+    BODY_DOFS,
+    DAMPER_NAMES,
+    DOF_NAMES,
+    LAYOUT,
+    N_DAMPER,
+    N_DOF,
+    StateLayout,
+)
 from railhunt.vehicle import Vehicle
 
 __all__ = [
@@ -70,14 +78,15 @@ class Element:
     point_b: tuple[float, float, float]
     coefficient: float
 
-    def deformation_row(self) -> np.ndarray:
+    def deformation_row(self, layout: StateLayout = LAYOUT) -> np.ndarray:
         """Row ``B`` with ``deformation = B @ q`` (point b minus point a along the axis)."""
-        return point_row(self.body_b, self.point_b, self.axis) - point_row(
-            self.body_a, self.point_a, self.axis
+        return point_row(self.body_b, self.point_b, self.axis, layout) - point_row(
+            self.body_a, self.point_a, self.axis, layout
         )
 
 
-def point_row(body: str, point: tuple[float, float, float], axis: str) -> np.ndarray:
+def point_row(body: str, point: tuple[float, float, float], axis: str,
+              layout: StateLayout = LAYOUT) -> np.ndarray:  # fmt: skip
     """Displacement of a body-fixed point along ``axis`` as a row over the coordinates q.
 
     Parameters
@@ -88,20 +97,24 @@ def point_row(body: str, point: tuple[float, float, float], axis: str) -> np.nda
         ``(px, py, pz)`` in m relative to the body's centre of gravity.
     axis : {"x", "y", "z"}
         Displacement component.
+    layout : StateLayout
+        The state layout (default: the paper's vehicle).
 
     Returns
     -------
     numpy.ndarray
-        Row of length ``N_DOF`` (m per m or m per rad).
+        Row of length ``n_dof`` (m per m or m per rad).
     """
-    iy, ipsi, iphi = BODY_DOFS[body]
+    iy, ipsi, iphi = layout.body_dofs(body)
     px, py, pz = point
-    row = np.zeros(N_DOF)
+    row = np.zeros(layout.n_dof)
     if axis == "x":
-        row[ipsi] = -py
+        if ipsi >= 0:
+            row[ipsi] = -py
     elif axis == "y":
         row[iy] = 1.0
-        row[ipsi] = px
+        if ipsi >= 0:
+            row[ipsi] = px
         if iphi >= 0:
             row[iphi] = pz
     elif axis == "z":
@@ -113,61 +126,38 @@ def point_row(body: str, point: tuple[float, float, float], axis: str) -> np.nda
 
 
 def suspension_elements(vehicle: Vehicle) -> list[Element]:
-    """All linear springs and dampers of the vehicle (primary and secondary suspension).
+    """The linear springs and dampers of the vehicle's layout, with numeric arms.
 
-    The yaw dampers are not included: they are Maxwell elements with their own state
-    (see :func:`yaw_damper_rows`).
+    The layout's ``spring`` and ``damper`` elements along x, y, z between two moving bodies
+    of the paper's coordinate names, in the layout's order (torsion elements, elements to
+    the track or to a fixed body, Maxwell elements and stops are not included: the model
+    reads all of them from :attr:`Vehicle.assembly`). Kept for scripts and tests that
+    inspect the paper's suspension element by element; :func:`assemble` of these gives
+    the assembly's matrices.
     """
-    v = vehicle
-    els: list[Element] = []
-    sides = ((1.0, "left"), (-1.0, "right"))
-    # Primary suspension: per axle box (two per wheelset).
-    for j in range(4):
-        bogie = f"bogie{j // 2 + 1}"
-        ws = f"wheelset{j + 1}"
-        xr = v.l1 if j % 2 == 0 else -v.l1
-        for s, side in sides:
-            tag = f"wheelset {j + 1} {side}"
-            pb = (xr, s * v.b1, -v.h4)
-            pw = (0.0, s * v.b1, 0.0)
-            els += [
-                Element(f"primary longitudinal spring, {tag}", "spring", "x", bogie, pb, ws, pw,
-                        v.K_px),
-                Element(f"primary longitudinal damper, {tag}", "damper", "x", bogie, pb, ws, pw,
-                        v.C_px),
-                Element(f"primary lateral spring, {tag}", "spring", "y", bogie, pb, ws, pw, v.K_py),
-                Element(f"primary lateral damper, {tag}", "damper", "y", bogie, pb, ws, pw, v.C_py),
-                Element(f"primary vertical spring, {tag}", "spring", "z", bogie, pb, ws, pw,
-                        v.K_pz),
-                Element(f"primary vertical damper, {tag}", "damper", "z", bogie, pb, ws, pw,
-                        v.C_pz),
-            ]  # fmt: skip
-    # Secondary suspension: two air springs, two lateral and two vertical dampers per bogie.
-    for i in range(2):
-        bogie = f"bogie{i + 1}"
-        xc = v.l if i == 0 else -v.l
-        for s, side in sides:
-            tag = f"bogie {i + 1} {side}"
-            spring_c, spring_t = (xc, s * v.b2, -v.h1), (0.0, s * v.b2, v.h3)
-            lat_c, lat_t = (xc, s * v.b2, -v.h2), (0.0, s * v.b2, v.h5)
-            vd_c, vd_t = (xc, s * v.b3, -v.h1), (0.0, s * v.b3, v.h3)
-            els += [
-                Element(f"secondary longitudinal spring, {tag}", "spring", "x", "car", spring_c,
-                        bogie, spring_t, v.K_sx),
-                Element(f"secondary lateral spring, {tag}", "spring", "y", "car", spring_c, bogie,
-                        spring_t, v.K_sy),
-                Element(f"secondary vertical spring, {tag}", "spring", "z", "car", spring_c, bogie,
-                        spring_t, v.K_sz),
-                Element(f"secondary lateral damper, {tag}", "damper", "y", "car", lat_c, bogie,
-                        lat_t, v.C_sy),
-                Element(f"secondary vertical damper, {tag}", "damper", "z", "car", vd_c, bogie,
-                        vd_t, v.C_sz),
-            ]  # fmt: skip
-    return els
+    from railhunt.layout.assembly import arm
+
+    layout = vehicle.layout
+    values = vehicle.values
+    out: list[Element] = []
+    for el in layout.elements:
+        if el.kind not in ("spring", "damper") or el.axis not in ("x", "y", "z"):
+            continue
+        if el.body_b == "track":
+            continue
+        a, b = layout.body(el.body_a), layout.body(el.body_b)
+        if not (a.coordinates and b.coordinates):
+            continue
+        key = "stiffness" if el.kind == "spring" else "damping"
+        out.append(Element(el.name, el.kind, el.axis, a.name, arm(el.at, a, values), b.name,
+                           arm(el.at_b, b, values), el.value(key)(values)))  # fmt: skip
+    return out
 
 
-def assemble(elements: list[Element]) -> tuple[np.ndarray, np.ndarray]:
-    """Stiffness and damping matrices of a set of elements.
+def assemble(elements: list[Element],
+             layout: StateLayout = LAYOUT) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+    """Stiffness and damping matrices of a set of elements (coordinates of ``layout``,
+    default the paper's vehicle).
 
     Returns
     -------
@@ -176,71 +166,49 @@ def assemble(elements: list[Element]) -> tuple[np.ndarray, np.ndarray]:
     C : numpy.ndarray, shape (N_DOF, N_DOF)
         Damping matrix (N*s/m, ...), symmetric.
     """
-    K = np.zeros((N_DOF, N_DOF))
-    C = np.zeros((N_DOF, N_DOF))
+    n = layout.n_dof
+    K = np.zeros((n, n))
+    C = np.zeros((n, n))
     for el in elements:
-        b = el.deformation_row()
+        b = el.deformation_row(layout)
         target = K if el.kind == "spring" else C
         target += el.coefficient * np.outer(b, b)
     return K, C
 
 
 def gravity_stiffness(vehicle: Vehicle) -> np.ndarray:
-    """Gravitational roll stiffness of car body and bogie frames (Eqs. 12 and 22).
+    """Gravitational roll stiffness of the layout's bodies (Eqs. 12 and 22 for the paper's).
 
     A body whose weight is carried on springs a height ``h`` below its centre of gravity
     has a destabilising roll stiffness ``-m g h``: car body on the secondary suspension
     (``h1``), bogie frames on the primary suspension at wheelset-centre height (``h4``).
+    The rule for any layout: docs/model.md, "Vehicle layouts".
     """
-    G = np.zeros((N_DOF, N_DOF))
-    car = LAYOUT.dof("phi_c")
-    G[car, car] = -vehicle.M_c * vehicle.g * vehicle.h1
-    for iphi in (LAYOUT.dof("phi_t1"), LAYOUT.dof("phi_t2")):
-        G[iphi, iphi] = -vehicle.M_t * vehicle.g * vehicle.h4
-    return G
+    return vehicle.assembly.gravity.copy()
 
 
 def mass_matrix_diagonal(vehicle: Vehicle) -> np.ndarray:
     """Diagonal of the mass matrix (kg and kg*m^2) in state order."""
-    v = vehicle
-    inertia = {
-        "car": {"y": v.M_c, "psi": v.J_cz, "phi": v.J_cx},
-        "bogie": {"y": v.M_t, "psi": v.J_tz, "phi": v.J_tx},
-        "wheelset": {"y": v.M_w, "psi": v.J_wz},
-    }
-    return np.array(
-        [inertia[b.name.rstrip("0123456789")][c] for b in LAYOUT.bodies for c in b.coordinates]
-    )
+    return vehicle.assembly.mass.copy()
 
 
 def yaw_damper_rows(vehicle: Vehicle) -> np.ndarray:
-    """Elongation rows of the four yaw dampers, ``elongation = B_d @ q`` (m).
+    """Elongation rows of the layout's Maxwell elements, ``elongation = B_d @ q`` (m).
 
-    Each damper runs longitudinally between the car body (at x = +-l) and a bogie frame,
-    at lateral arm ``b4``. Order: front left, front right, rear left, rear right.
+    For the paper's vehicle: the four yaw dampers, each longitudinal between the car body
+    (at x = +-l) and a bogie frame, at lateral arm ``b4``; order front left, front right,
+    rear left, rear right.
     """
-    rows = []
-    for i in range(2):
-        xc = vehicle.l if i == 0 else -vehicle.l
-        for s in (1.0, -1.0):
-            rows.append(
-                point_row(f"bogie{i + 1}", (0.0, s * vehicle.b4, 0.0), "x")
-                - point_row("car", (xc, s * vehicle.b4, 0.0), "x")
-            )
-    return np.array(rows)
+    return vehicle.assembly.damper_rows.copy()
 
 
 def bump_stop_rows(vehicle: Vehicle) -> np.ndarray:
-    """Deformation rows of the secondary lateral bump stops, one per bogie (m).
+    """Deformation rows of the layout's stops (m).
 
-    Each stop acts laterally between the car body (at x = +-l) and its bogie frame at the
-    level of the secondary suspension (car ``-h1``, bogie ``+h3`` from the centres of
-    gravity): deformation = bogie point minus car point, ``B_s @ q``. Its law (free play
-    ``y_bs``, then ``K_bs u + K_bs3 u^3``) is :mod:`railhunt.kernel.bumpstop`.
+    For the paper's vehicle: the secondary lateral bump stops, one per bogie, between the
+    car body (at x = +-l) and its bogie frame at the level of the secondary suspension
+    (car ``-h1``, bogie ``+h3`` from the centres of gravity): deformation = bogie point
+    minus car point, ``B_s @ q``. Its law (free play ``y_bs``, then
+    ``K_bs u + K_bs3 u^3``) is :mod:`railhunt.kernel.bumpstop`.
     """
-    rows = []
-    for i in range(2):
-        xc = vehicle.l if i == 0 else -vehicle.l
-        rows.append(point_row(f"bogie{i + 1}", (0.0, 0.0, vehicle.h3), "y")
-                    - point_row("car", (xc, 0.0, -vehicle.h1), "y"))  # fmt: skip
-    return np.array(rows)
+    return vehicle.assembly.stop_rows.copy()

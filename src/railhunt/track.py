@@ -71,7 +71,9 @@ class InitialDisplacement:
     amplitude : float
         Initial lateral displacement (m).
     wheelsets : tuple of int
-        Which wheelsets (1 = leading) are displaced; all four by default.
+        Which wheelsets (1 = leading) are displaced; all four by default. A vehicle with
+        fewer wheelsets ignores the numbers it does not have (so the default displaces
+        all of them); one with more displaces only those listed.
     """
 
     amplitude: float = 0.003
@@ -80,8 +82,8 @@ class InitialDisplacement:
     def __post_init__(self) -> None:
         _check("amplitude", self.amplitude, -0.05, 0.05, "m")
         for w in self.wheelsets:
-            if w not in (1, 2, 3, 4):
-                raise ValueError(f"wheelsets contains {w!r}: wheelsets are numbered 1 to 4")
+            if isinstance(w, bool) or not isinstance(w, int) or w < 1:
+                raise ValueError(f"wheelsets contains {w!r}: wheelsets are numbered from 1")
 
     def end(self) -> float:
         """Track position where the excitation ends (m): at the start."""

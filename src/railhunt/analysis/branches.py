@@ -243,7 +243,7 @@ def make_branch(orbits: list[PeriodicOrbit], origin: str,
         period.insert(0, hopf[1])
         stable.insert(0, stable[0])
         mmax.insert(0, math.nan)
-        wamp.insert(0, np.zeros(4))
+        wamp.insert(0, np.zeros(len(wamp[0]) if wamp else 4))
     speed_a = np.array(speed)
     amp_a = np.array(amp)
     folds = []

@@ -41,15 +41,12 @@ from railhunt.analysis.curving import EquilibriumPath
 from railhunt.analysis.linear import eigenvalues, hunting_mode_index, linear_critical_speed
 from railhunt.analysis.modes import sorted_eig
 from railhunt.analysis.periodic import (
-    PHASE_INDEX,
-    STATE_SCALE,
     PeriodicOrbit,
     Shooting,
     newton,
 )
 from railhunt.curve import Curve
 from railhunt.kernel.integrators import OK
-from railhunt.kernel.layout import N_STATE, WHEELSET_Y, Y_W1
 from railhunt.model import Model
 from railhunt.units import kmh_to_ms, ms_to_kmh
 from railhunt.vehicle import Vehicle
@@ -83,13 +80,13 @@ def _hopf_start(model: Model, hopf_kmh: float,
         w, vecs = eigenvalues(model, kmh_to_ms(hopf_kmh))
     else:
         w, vecs = sorted_eig(path.jacobian_kmh(hopf_kmh))
-    k = hunting_mode_index(w, vecs, model.vehicle.a)
+    k = hunting_mode_index(w, vecs, model.half_gauge, model.layout)
     lam = w[k]
     if lam.imag < 0:
         lam, vec = np.conj(lam), np.conj(vecs[:, k])
     else:
         vec = vecs[:, k]
-    vec = vec / vec[Y_W1]
+    vec = vec / vec[model.layout.y_w1]
     return np.real(vec), 2 * math.pi / abs(lam.imag)
 
 
@@ -112,9 +109,10 @@ class _Tracer:
         self.shoot = shoot
         self.limits = limits
         self.on_point = on_point
-        keep = np.ones(N_STATE, dtype=bool)
-        keep[PHASE_INDEX] = False
-        self.iy = int(np.flatnonzero(keep).tolist().index(Y_W1))
+        keep = np.ones(shoot.n_state, dtype=bool)
+        keep[shoot.phase_index] = False
+        self.y_w1 = shoot.model.layout.y_w1
+        self.iy = int(np.flatnonzero(keep).tolist().index(self.y_w1))
 
     def solve(self, u: np.ndarray, norm: float, it: int) -> tuple[PeriodicOrbit, tuple]:
         lin = self.shoot.linearise(u)
@@ -149,7 +147,7 @@ class _Tracer:
             ok = False
             while ds >= ds_min:
                 dv_kmh = ms_to_kmh(abs(tangent[-1]) * Shooting.V_SCALE)
-                da = abs(tangent[iy]) * STATE_SCALE[Y_W1]
+                da = abs(tangent[iy]) * self.shoot.scale[self.y_w1]
                 ds = min(ds, ds_max, lim.max_step_kmh / max(dv_kmh, 1e-12),
                          lim.max_step_amplitude / max(da, 1e-12))  # fmt: skip
                 u_pred = u_prev + ds * tangent
@@ -202,7 +200,7 @@ def bifurcation_diagram(
     seed_amplitudes: tuple[float, ...] = (0.008,),
     dt: float | None = None,
     symmetric: bool = True,
-    creep_law: str = "heuristic",
+    creep_law: str | None = None,
     on_point: Callable[[PeriodicOrbit], None] | None = None,
     curve: Curve | None = None,
 ) -> BifurcationDiagram:
@@ -274,7 +272,8 @@ def bifurcation_diagram(
                      route=None if path is None else path.route,
                      equilibrium=None if path is None else path.state)  # fmt: skip
     shoot.set_period_hint(period0)
-    x_hopf = np.zeros(N_STATE) if path is None else path.state(kmh_to_ms(hopf))
+    y_w1 = model.layout.y_w1
+    x_hopf = np.zeros(shoot.n_state) if path is None else path.state(kmh_to_ms(hopf))
     tracer = _Tracer(shoot, limits, on_point)
     iy = tracer.iy
 
@@ -283,7 +282,7 @@ def bifurcation_diagram(
     small: list[tuple[np.ndarray, PeriodicOrbit, tuple]] = []
     u = shoot.pack(x_hopf + seeds[0] * shape, period0, kmh_to_ms(hopf))
     for n, eps in enumerate(seeds):
-        target = (x_hopf[Y_W1] + eps) / STATE_SCALE[Y_W1]
+        target = (x_hopf[y_w1] + eps) / shoot.scale[y_w1]
         if n >= 2:
             u = small[-1][0] + (small[-1][0] - small[-2][0]) * (eps - seeds[n - 1]) / (
                 seeds[n - 1] - seeds[n - 2])  # fmt: skip
@@ -376,17 +375,19 @@ def _seed_orbit(model: Model, shoot: Shooting, speed_kmh: float, amplitude: floa
     from railhunt.simulation import auto_step, integrate_model
 
     speed = kmh_to_ms(speed_kmh)
-    x_eq = np.zeros(N_STATE) if path is None else path.state(speed)
+    layout = model.layout
+    y_w1 = layout.y_w1
+    x_eq = np.zeros(layout.n_state) if path is None else path.state(speed)
     x0 = x_eq.copy()
-    x0[WHEELSET_Y] += amplitude
+    x0[layout.wheelset_y] += amplitude
     dt = auto_step(model, speed)
     route = None if path is None else path.route
     t, x, status, _ = integrate_model(model, speed, 12.0, x0, dt=dt, route=route)
     if status != OK:
         return None
-    y = x[:, Y_W1]
+    y = x[:, y_w1]
     tail = y[t > t[-1] - 2.0]
-    if np.max(np.abs(tail - x_eq[Y_W1])) < 1e-4:
+    if np.max(np.abs(tail - x_eq[y_w1])) < 1e-4:
         return None
     k = phase_origin(t, y)
     # Period guess from the spacing of the last maxima.
@@ -395,7 +396,8 @@ def _seed_orbit(model: Model, shoot: Shooting, speed_kmh: float, amplitude: floa
     if len(peaks) < 3:
         return None
     period = float(np.mean(np.diff(t[peaks])))
-    u = shoot.pack(np.where(np.arange(N_STATE) == PHASE_INDEX, 0.0, x[k]), period, speed)
+    u = shoot.pack(np.where(np.arange(layout.n_state) == shoot.phase_index, 0.0, x[k]),
+                   period, speed)  # fmt: skip
     vs = u[-1]
 
     def fun(w: np.ndarray) -> np.ndarray:

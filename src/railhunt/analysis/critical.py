@@ -21,7 +21,7 @@ from railhunt.analysis.curving import EquilibriumPath
 from railhunt.analysis.search import bracket_and_bisect, check_search
 from railhunt.curve import Curve
 from railhunt.kernel.integrators import OK, STATUS_NAMES
-from railhunt.kernel.layout import N_STATE, WHEELSET_Y, Y_W1
+from railhunt.kernel.layout import LAYOUT, StateLayout
 from railhunt.model import Model
 from railhunt.results import Columns, ResultDisplay, Row
 from railhunt.simulation import Y_LIMIT, auto_step, excitation_end_time, integrate_model
@@ -270,7 +270,8 @@ def judge_run(result: object, judgement: Judgement | None = None,
 
 
 def excitation_size(excitation: object, x0: np.ndarray | None = None,
-                    reference: np.ndarray | None = None) -> float:  # fmt: skip
+                    reference: np.ndarray | None = None,
+                    layout: StateLayout = LAYOUT) -> float:  # fmt: skip
     """Size of what sets a run off (m): the largest lateral offset of the track input (a
     defect's amplitude, a sampled track's largest alignment) and of the wheelsets' start
     from the equilibrium ``reference`` (default the centred state); 0 for none."""
@@ -280,8 +281,9 @@ def excitation_size(excitation: object, x0: np.ndarray | None = None,
     elif isinstance(excitation, SampledTrack) and len(excitation.alignment):
         size = float(np.max(np.abs(excitation.alignment)))
     if x0 is not None:
-        start = np.asarray(x0, dtype=float)[WHEELSET_Y]
-        ref = 0.0 if reference is None else np.asarray(reference, dtype=float)[WHEELSET_Y]
+        ys = layout.wheelset_y
+        start = np.asarray(x0, dtype=float)[ys]
+        ref = 0.0 if reference is None else np.asarray(reference, dtype=float)[ys]
         size = max(size, float(np.max(np.abs(start - ref))))
     return size
 
@@ -338,10 +340,11 @@ def run_until_verdict(
     """
     speed = kmh_to_ms(speed_kmh)
     t_exc = excitation_end_time(model, excitation, speed)
-    y_ref = 0.0 if reference is None else float(reference[Y_W1])
+    y_w1 = model.layout.y_w1
+    y_ref = 0.0 if reference is None else float(reference[y_w1])
     if x0 is None:
-        x0 = np.zeros(N_STATE) if reference is None else reference
-    size = excitation_size(excitation, x0, reference)
+        x0 = np.zeros(model.layout.n_state) if reference is None else reference
+    size = excitation_size(excitation, x0, reference, model.layout)
     if 0 < DECAY_SHARE * size < judgement.decay_amplitude:
         judgement = replace(judgement, decay_amplitude=DECAY_SHARE * size)
     t0, x_start = 0.0, np.asarray(x0, dtype=float)
@@ -356,7 +359,7 @@ def run_until_verdict(
         ts.append(t if not ts else t[1:])
         xs.append(x if not xs else x[1:])
         tt, xx = np.concatenate(ts), np.concatenate(xs)
-        y = xx[:, Y_W1] if reference is None else xx[:, Y_W1] - y_ref
+        y = xx[:, y_w1] if reference is None else xx[:, y_w1] - y_ref
         if code != OK:
             return HUNTING, tt, xx, code, float(np.max(np.abs(y[-50:]))), math.nan, True
         final = tt[-1] - t_exc >= judgement.max_duration - 1e-9
@@ -401,7 +404,7 @@ def critical_speed(
     judgement: Judgement | None = None,
     method: str = "rk4",
     dt: float | None = None,
-    creep_law: str = "heuristic",
+    creep_law: str | None = None,
     progress: Callable[[Trial], None] | None = None,
     contact: object = None,
     curve: Curve | Callable[[float], Curve] | None = None,

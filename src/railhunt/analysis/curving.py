@@ -21,28 +21,23 @@ from railhunt.analysis.modes import hunting_mode_index, sorted_eig
 from railhunt.analysis.newton import newton
 from railhunt.curve import Curve
 from railhunt.kernel.bumpstop import bump_stop_force
-from railhunt.kernel.layout import (
-    FORCE0,
-    LAYOUT,
-    N_DOF,
-    N_STATE,
-    RATE0,
-    WHEELSET_PSI,
-    WHEELSET_Y,
-    StopParam,
-)
+from railhunt.kernel.layout import StateLayout, StopParam
 from railhunt.kernel.rhs import curve_geometry, derived, rhs
 from railhunt.model import Model
 from railhunt.results import Columns, ResultDisplay, Row
 from railhunt.units import kmh_to_ms, ms_to_kmh
 from railhunt.vehicle import Vehicle
 
-#: The unknowns of the equilibrium: coordinates and damper forces (rates are zero).
-_UNKNOWNS = np.concatenate([np.arange(N_DOF), np.arange(FORCE0, N_STATE)])
-#: The equations: accelerations and damper force rates.
-_EQUATIONS = np.arange(RATE0, N_STATE)
-#: Scales of the equations for the convergence test: m/s^2 (rad/s^2) and N/s.
-_EQ_SCALE = np.concatenate([np.full(N_DOF, 1.0), np.full(N_STATE - FORCE0, 1e3)])
+
+def _equilibrium_slots(layout: StateLayout) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The unknowns of the equilibrium (coordinates and damper forces: rates are zero),
+    the equations (accelerations and damper force rates) and the equations' scales for the
+    convergence test (m/s^2 or rad/s^2, and N/s)."""
+    n, f0, ns = layout.n_dof, layout.force0, layout.n_state
+    unknowns = np.concatenate([np.arange(n), np.arange(f0, ns)])
+    equations = np.arange(layout.rate0, ns)
+    scale = np.concatenate([np.full(n, 1.0), np.full(ns - f0, 1e3)])
+    return unknowns, equations, scale
 
 
 class CurvingError(RuntimeError):
@@ -86,9 +81,11 @@ def equilibrium(
         If Newton's method does not converge.
     """
     v, system = model.args(speed, route=route)
-    x = np.zeros(N_STATE) if x0 is None else np.array(x0, dtype=np.float64)
-    x[RATE0:FORCE0] = 0.0
-    out = np.empty(N_STATE)
+    layout = model.layout
+    _UNKNOWNS, _EQUATIONS, _EQ_SCALE = _equilibrium_slots(layout)  # noqa: N806
+    x = np.zeros(layout.n_state) if x0 is None else np.array(x0, dtype=np.float64)
+    x[layout.rate0:layout.force0] = 0.0
+    out = np.empty(layout.n_state)
 
     def state_of(z: np.ndarray) -> np.ndarray:
         state = x.copy()
@@ -251,7 +248,7 @@ def _wheel_forces(model: Model, speed: float, route: np.ndarray,
     """ΣY (4,), Y (4, 2) and Q (4, 2) at state ``x`` (the kernel's derived channels)."""
     v, system = model.args(speed, route=route)
     res = derived(np.zeros(1), x[None, :].copy(), v, system, np.zeros(0, dtype=np.int64))[0]
-    nw = len(WHEELSET_Y)
+    nw = system.wheelsets.shape[0]
     sum_y = res[:nw]
     y_force = np.column_stack([res[nw:2 * nw], res[2 * nw:3 * nw]])
     q = np.column_stack([res[3 * nw:4 * nw], res[4 * nw:5 * nw]])
@@ -263,10 +260,27 @@ def bump_stop_forces(model: Model, speed: float, route: np.ndarray, x: np.ndarra
     """Force in each bump stop (N) at state ``x`` and time ``t`` on ``route``."""
     v, system = model.args(speed, route=route)
     geo = curve_geometry(t, v, system)
-    dist = system.stop_rows @ (x[:N_DOF] + geo[:N_DOF])
+    n = model.layout.n_dof
+    dist = system.stop_rows @ (x[:n] + geo[:n])
     par = system.stop
     return np.array([bump_stop_force(d, p[StopParam.GAP], p[StopParam.K1], p[StopParam.K3])
                      for d, p in zip(dist, par, strict=True)])  # fmt: skip
+
+
+def _kind(body: object) -> str:
+    kind = getattr(body, "kind", "")
+    if kind:
+        return kind
+    name = body.name  # type: ignore[attr-defined]
+    return "car" if name == "car" else "frame" if name.startswith("bogie") else "wheelset"
+
+
+def _first_y(layout: StateLayout, x: np.ndarray, kind: str) -> float:
+    """Lateral displacement of the first body of ``kind`` (m); NaN if the layout has none."""
+    for b in layout.bodies:
+        if _kind(b) == kind and "y" in b.coordinates:
+            return float(x[layout.dof(f"y_{b.tag}")])
+    return math.nan
 
 
 def curving_state(model: Model, speed: float, curve: Curve, x: np.ndarray,
@@ -275,26 +289,28 @@ def curving_state(model: Model, speed: float, curve: Curve, x: np.ndarray,
     route = curve.steady_route()
     sum_y, y_force, q = _wheel_forces(model, speed, route, x)
     w, vecs = sorted_eig(model.jacobian(speed, x, route=route))
-    k = hunting_mode_index(w, vecs, model.vehicle.a)
+    layout = model.layout
+    k = hunting_mode_index(w, vecs, model.half_gauge, layout)
     hunt = complex(w[k]) if k >= 0 else complex(math.nan, math.nan)
     mod = np.abs(w)
     zeta = np.where(mod > 0, -w.real / np.where(mod > 0, mod, 1.0), 1.0)
     outward = 1.0 if curve.curvature > 0 else -1.0
     return CurvingResult(
         speed_kmh=ms_to_kmh(speed), curve=curve, state=x.copy(),
-        wheelset_y=x[WHEELSET_Y].copy(), attack_angle=-outward * x[WHEELSET_PSI],
+        wheelset_y=x[layout.wheelset_y].copy(), attack_angle=-outward * x[layout.wheelset_psi],
         Y=y_force, Q=q, derailment_quotient=y_force / q, sum_Y=sum_y,
-        unbalanced_acceleration=curve.unbalanced_acceleration(speed, model.vehicle.g),
-        cant_deficiency=curve.cant_deficiency(speed, model.vehicle.g),
-        car_body_y=float(x[LAYOUT.dof("y_c")]),
-        bogie_y=np.array([x[LAYOUT.dof("y_t1")], x[LAYOUT.dof("y_t2")]]),
+        unbalanced_acceleration=curve.unbalanced_acceleration(speed, model.gravity),
+        cant_deficiency=curve.cant_deficiency(speed, model.gravity),
+        car_body_y=_first_y(layout, x, "car"),
+        bogie_y=np.array([x[layout.dof(f"y_{b.tag}")] for b in layout.bodies
+                          if _kind(b) == "frame" and "y" in b.coordinates]),
         bump_stop_force=bump_stop_forces(model, speed, route, x),
         stable=bool(w[0].real < 0), least_damping_ratio=float(np.min(zeta)),
         hunting_eigenvalue=hunt, eigenvalues=w, residual=residual,
     )  # fmt: skip
 
 
-def curving(vehicle: Vehicle, speed_kmh: float, curve: Curve, creep_law: str = "heuristic",
+def curving(vehicle: Vehicle, speed_kmh: float, curve: Curve, creep_law: str | None = None,
             contact: object = None, x0: np.ndarray | None = None) -> CurvingResult:  # fmt: skip
     """Steady curving of a vehicle in the constant part of a curve, and its stability.
 

@@ -24,7 +24,6 @@ import numpy as np
 from railhunt.analysis.critical import HUNTING, STABLE, Judgement, run_until_verdict
 from railhunt.analysis.linear import eigen_analysis
 from railhunt.analysis.periodic import periodic_orbit, phase_origin
-from railhunt.kernel.layout import FORCES, N_DAMPER, N_STATE, RATE0, WHEELSET_Y, Y_W1
 from railhunt.model import Model
 from railhunt.results import Columns, ResultDisplay, Row
 from railhunt.simulation import auto_step, integrate_model
@@ -177,7 +176,7 @@ def hunting_frequency(
     fft_window: float = 8.0,
     sample_rate: float = 200.0,
     refine: bool = True,
-    creep_law: str = "heuristic",
+    creep_law: str | None = None,
     model: Model | None = None,
     excitation: object = None,
 ) -> HuntingFrequency:
@@ -242,14 +241,17 @@ def hunting_frequency(
     f_eig = float(eig.hunting_frequency_hz[0])
     zeta = float(eig.hunting_damping_ratio[0])
     dt = auto_step(model, speed)
-    x0 = np.zeros(N_STATE)
+    layout = model.layout
+    y_w1, forces = layout.y_w1, layout.forces
+    x0 = np.zeros(layout.n_state)
     if excitation is None:
-        x0[WHEELSET_Y] = initial_amplitude
+        x0[layout.wheelset_y] = initial_amplitude
     verdict, t, x, code, _, _, _ = run_until_verdict(model, speed_kmh, judgement, excitation,
                                                      x0, dt=dt)  # fmt: skip
-    y = x[:, Y_W1]
-    vd = model.damper_velocities(x[:, FORCES]) if x.size else np.empty((0, N_DAMPER))
-    v_u = vehicle.F_u / vehicle.C_d1
+    y = x[:, y_w1]
+    vd = (model.damper_velocities(x[:, forces]) if x.size
+          else np.empty((0, layout.n_damper)))  # fmt: skip
+    v_u = _blowoff_velocity(model)
     if verdict == STABLE:
         return HuntingFrequency(speed_kmh, f_eig, "eigenvalue", STABLE, 0.0, f_eig, zeta,
                                 math.nan, math.nan, t, y, vd, v_u)  # fmt: skip
@@ -269,14 +271,14 @@ def hunting_frequency(
                     break
                 t, x = np.concatenate([t, tt[1:]]), np.concatenate([x, xx[1:]])
                 extended += REFINE_CHUNK
-                f_fft, amp = _spectrum_peak(t, x[:, Y_W1], fft_window, sample_rate)
+                f_fft, amp = _spectrum_peak(t, x[:, y_w1], fft_window, sample_rate)
                 orbit, _ = _refine_orbit(model, speed_kmh, t, x, dt, f_fft, amp)
             if orbit is not None:
                 f_orbit, amp, rejected = orbit.frequency_hz, orbit.amplitude, ""
             elif extended:
                 rejected += f" (and again after running {extended:g} s longer)"
-        y = x[:, Y_W1]
-        vd = model.damper_velocities(x[:, FORCES])
+        y = x[:, y_w1]
+        vd = model.damper_velocities(x[:, forces])
         f, source = (f_orbit, "limit-cycle") if math.isfinite(f_orbit) else (f_fft,
                                                                               "limit-cycle-fft")
         return HuntingFrequency(speed_kmh, f, source, HUNTING, amp, f_eig, zeta, f_fft,
@@ -284,6 +286,15 @@ def hunting_frequency(
     # The run left the track (derailment limit) or diverged: no frequency.
     return HuntingFrequency(speed_kmh, math.nan, "limit-exceeded", HUNTING, math.nan, f_eig,
                             zeta, math.nan, math.nan, t, y, vd, v_u)  # fmt: skip
+
+
+def _blowoff_velocity(model: Model) -> float:
+    """The first yaw damper's blow-off velocity ``F_u / C_d1`` (m/s); NaN without one."""
+    from railhunt.kernel.layout import DamperParam
+
+    if model.dpar.shape[0] == 0:
+        return math.nan
+    return float(model.dpar[0, DamperParam.F_U] / model.dpar[0, DamperParam.C_D1])
 
 
 #: When shooting from the end of a run fails, the run goes on in chunks of this many
@@ -313,8 +324,9 @@ def _extremum_state(model: Model, speed_kmh: float, t: np.ndarray, x: np.ndarray
                                       t0=float(t[k - 1]), dt=dt)  # fmt: skip
     if code != 0 or tt.size < 3:
         return x[k]
-    rate = xx[:, RATE0 + Y_W1]
-    j = int(np.argmin(np.abs(rate) + np.where(xx[:, Y_W1] > 0, 0.0, np.inf)))
+    y_w1 = model.layout.y_w1
+    rate = xx[:, model.layout.rate0 + y_w1]
+    j = int(np.argmin(np.abs(rate) + np.where(xx[:, y_w1] > 0, 0.0, np.inf)))
     return xx[j] if math.isfinite(rate[j]) else x[k]
 
 
@@ -341,7 +353,7 @@ def _refine_orbit(model: Model, speed_kmh: float, t: np.ndarray, x: np.ndarray, 
         Why no orbit was accepted ("" when one was).
     """
     reasons: list[str] = []
-    for k in _maxima(x[:, Y_W1], 3):
+    for k in _maxima(x[:, model.layout.y_w1], 3):
         start = _extremum_state(model, speed_kmh, t, x, k, dt)
         try:
             orbit = periodic_orbit(model, speed_kmh, start, 1.0 / f_fft, dt=dt)

@@ -21,7 +21,6 @@ from scipy.optimize import brentq, minimize_scalar
 from railhunt.analysis.curving import EquilibriumPath
 from railhunt.analysis.modes import eigenvalues, hunting_mode_index, mac, sorted_eig
 from railhunt.curve import Curve
-from railhunt.kernel.layout import N_DOF, N_STATE
 from railhunt.model import Model
 from railhunt.results import Columns, ResultDisplay, Row
 from railhunt.units import kmh_to_ms
@@ -112,7 +111,7 @@ class LinearCriticalSpeed(ResultDisplay):
 
 
 def eigen_analysis(
-    vehicle: Vehicle, speeds_kmh: np.ndarray | list[float], creep_law: str = "heuristic"
+    vehicle: Vehicle, speeds_kmh: np.ndarray | list[float], creep_law: str | None = None
 ) -> EigenResult:
     """Eigenvalues of the linearised model and the hunting mode at each speed.
 
@@ -135,14 +134,15 @@ def eigen_analysis(
     if speeds.ndim != 1 or speeds.size == 0 or not np.all(np.isfinite(speeds) & (speeds > 0)):
         raise ValueError("speeds_kmh must be a non-empty 1-D list of finite speeds > 0 km/h")
     model = Model(vehicle, creep_law=creep_law)
-    eig = np.empty((speeds.size, N_STATE), dtype=complex)
+    n_state, n_dof = model.layout.n_state, model.layout.n_dof
+    eig = np.empty((speeds.size, n_state), dtype=complex)
     shapes = []
     first_pick = np.empty(speeds.size, dtype=int)
     for i, s in enumerate(speeds):
         w, vecs = eigenvalues(model, kmh_to_ms(s))
         eig[i] = w
-        shapes.append(vecs[:N_DOF])
-        first_pick[i] = hunting_mode_index(w, vecs, vehicle.a)
+        shapes.append(vecs[:n_dof])
+        first_pick[i] = hunting_mode_index(w, vecs, model.half_gauge, model.layout)
     # Seed: the speed at which the per-speed pick is least damped (ratio).
     picked = eig[np.arange(speeds.size), first_pick]
     zeta = -picked.real / np.maximum(np.abs(picked), 1e-12)
@@ -154,7 +154,7 @@ def eigen_analysis(
             prev = shapes[i][:, index[i]]
             j = i + direction
             best, best_mac = index[j], -1.0
-            for k in range(N_STATE):
+            for k in range(n_state):
                 if eig[j, k].imag <= 1e-6:
                     continue
                 m = mac(prev, shapes[j][:, k])
@@ -172,7 +172,7 @@ def linear_critical_speed(
     max_kmh: float = 1000.0,
     tol_kmh: float = 0.01,
     scan_step_kmh: float = 20.0,
-    creep_law: str = "heuristic",
+    creep_law: str | None = None,
     contact: object = None,
     curve: Curve | Callable[[float], Curve] | None = None,
 ) -> LinearCriticalSpeed:
@@ -254,6 +254,6 @@ def linear_critical_speed(
         is_hunting = False
     else:
         kk = k if w[k].imag > 0 else int(np.argmin(np.abs(w - np.conj(w[k]))))
-        is_hunting = kk == hunting_mode_index(w, vecs, vehicle.a)
+        is_hunting = kk == hunting_mode_index(w, vecs, model.half_gauge, model.layout)
     return LinearCriticalSpeed(float(speed), abs(w[k].imag) / (2 * math.pi), complex(w[k]),
                                is_hunting)  # fmt: skip

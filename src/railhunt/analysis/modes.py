@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from railhunt.kernel.layout import BODY_Y, N_DOF, WHEELSET_PSI, WHEELSET_Y
+from railhunt.kernel.layout import LAYOUT, StateLayout
 from railhunt.model import Model
 
 
@@ -25,12 +25,14 @@ def eigenvalues(model: Model, speed: float) -> tuple[np.ndarray, np.ndarray]:
     return sorted_eig(model.jacobian(speed))
 
 
-def hunting_mode_index(w: np.ndarray, vecs: np.ndarray, a: float) -> int:
+def hunting_mode_index(w: np.ndarray, vecs: np.ndarray, a: float,
+                       layout: StateLayout = LAYOUT) -> int:  # fmt: skip
     """Index of the hunting mode among eigenpairs ``(w, vecs)``.
 
     Among the oscillatory modes (Im > 0) whose largest lateral displacement amplitude
     (yaw angles scaled by the half gauge ``a``) belongs to a wheelset, the least damped
-    (largest real part). Falls back to the least-damped oscillatory mode.
+    (largest real part). Falls back to the least-damped oscillatory mode. ``layout`` is
+    the model's state layout (default: the paper's vehicle).
     """
     best, best_any = -1, -1
     for k in range(w.size):
@@ -38,16 +40,17 @@ def hunting_mode_index(w: np.ndarray, vecs: np.ndarray, a: float) -> int:
             continue
         if best_any < 0 or w[k].real > w[best_any].real:
             best_any = k
-        if _is_wheelset_mode(vecs[:N_DOF, k], a) and (best < 0 or w[k].real > w[best].real):
+        better = best < 0 or w[k].real > w[best].real
+        if better and _is_wheelset_mode(vecs[:layout.n_dof, k], a, layout):
             best = k
     return best if best >= 0 else best_any
 
 
-def _is_wheelset_mode(q: np.ndarray, a: float) -> bool:
+def _is_wheelset_mode(q: np.ndarray, a: float, layout: StateLayout = LAYOUT) -> bool:
     """True when the largest lateral amplitude of mode shape ``q`` (coordinates) is a wheelset's."""
-    lateral = np.abs(q[BODY_Y])
-    wheel = np.concatenate([np.abs(q[WHEELSET_Y]), a * np.abs(q[WHEELSET_PSI])])
-    return bool(wheel.max() >= lateral.max())
+    lateral = np.abs(q[layout.body_y])
+    wheel = np.concatenate([np.abs(q[layout.wheelset_y]), a * np.abs(q[layout.wheelset_psi])])
+    return bool(wheel.max() >= lateral.max(initial=0.0))
 
 
 def mac(p: np.ndarray, q: np.ndarray) -> float:

@@ -31,7 +31,7 @@ import numpy as np
 
 from railhunt.analysis.newton import newton
 from railhunt.kernel.flow import flow
-from railhunt.kernel.layout import N_DAMPER, N_DOF, N_STATE, RATE0, WHEELSET_Y, Y_W1
+from railhunt.kernel.layout import LAYOUT, RATE0, Y_W1, StateLayout
 from railhunt.model import Model
 from railhunt.results import Columns, ResultDisplay, Row
 from railhunt.simulation import auto_step
@@ -41,7 +41,14 @@ from railhunt.units import kmh_to_ms, ms_to_kmh
 PHASE_INDEX = RATE0 + Y_W1
 
 #: Natural scales of the states (m or rad, m/s or rad/s, N) for Newton and finite differences.
-STATE_SCALE = np.concatenate([np.full(N_DOF, 1e-3), np.full(N_DOF, 1e-2), np.full(N_DAMPER, 1e3)])
+def state_scale(layout: StateLayout) -> np.ndarray:
+    """Natural scales of a layout's states (1e-3 m or rad, 1e-2 m/s or rad/s, 1e3 N)."""
+    n, nd = layout.n_dof, layout.n_damper
+    return np.concatenate([np.full(n, 1e-3), np.full(n, 1e-2), np.full(nd, 1e3)])
+
+
+#: :func:`state_scale` of the paper's vehicle.
+STATE_SCALE = state_scale(LAYOUT)
 #: Relative finite-difference step (times STATE_SCALE).
 FD_STEP = 1e-5
 #: Smallest largest scaled state entry of an orbit (1e-2: 10 micrometres or 0.1 mm/s);
@@ -171,8 +178,14 @@ class Shooting:
             raise ValueError(f"dt = {self.dt!r} s is invalid: must be in (0, 0.01] s")
         self.locate = bool(locate_switching)
         self.n_steps = 0  # set by set_period_hint
-        self._keep = np.ones(N_STATE, dtype=bool)
-        self._keep[PHASE_INDEX] = False
+        layout = model.layout
+        self.n_state = layout.n_state
+        #: Index of dy_w1/dt (the phase condition) and the states' scales of this model.
+        self.phase_index = layout.rate0 + layout.y_w1
+        self.scale = state_scale(layout)
+        self.wheelset_y = layout.wheelset_y
+        self._keep = np.ones(self.n_state, dtype=bool)
+        self._keep[self.phase_index] = False
         self._no_samples = np.empty((0, 0))
 
     # -- packing --------------------------------------------------------------------
@@ -183,13 +196,13 @@ class Shooting:
 
     def pack(self, x0: np.ndarray, period: float, speed: float) -> np.ndarray:
         """Scaled unknown vector from state, period (s) and speed (m/s)."""
-        return np.concatenate([(x0 / STATE_SCALE)[self._keep],
+        return np.concatenate([(x0 / self.scale)[self._keep],
                                [period / self.T_SCALE, speed / self.V_SCALE]])  # fmt: skip
 
     def unpack(self, u: np.ndarray) -> tuple[np.ndarray, float, float]:
         """State (SI), period (s) and speed (m/s) from a scaled unknown vector."""
-        x0 = np.zeros(N_STATE)
-        x0[self._keep] = u[:-2] * STATE_SCALE[self._keep]
+        x0 = np.zeros(self.n_state)
+        x0[self._keep] = u[:-2] * self.scale[self._keep]
         return x0, float(u[-2] * self.T_SCALE), float(u[-1] * self.V_SCALE)
 
     # -- the map --------------------------------------------------------------------
@@ -207,13 +220,13 @@ class Shooting:
     def _residual_state(self, x0: np.ndarray, period: float, speed: float) -> np.ndarray:
         xe = self.end_state(x0, period, speed)
         r = xe + x0 if self.symmetric else xe - x0
-        return r / STATE_SCALE
+        return r / self.scale
 
     def residual(self, u: np.ndarray) -> np.ndarray:
         """Scaled shooting residual (38 entries); infinite where period or speed is <= 0."""
         x0, period, speed = self.unpack(u)
         if not (period > 0 and speed > 0):
-            return np.full(N_STATE, np.inf)
+            return np.full(self.n_state, np.inf)
         return self._residual_state(x0, period, speed)
 
     def linearise(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -230,9 +243,10 @@ class Shooting:
         """
         x0, period, speed = self.unpack(u)
         xe = self.end_state(x0, period, speed)
-        m = np.empty((N_STATE, N_STATE))
-        for k in range(N_STATE):
-            h = FD_STEP * STATE_SCALE[k]
+        n = self.n_state
+        m = np.empty((n, n))
+        for k in range(n):
+            h = FD_STEP * self.scale[k]
             xp = x0.copy()
             xp[k] += h
             m[:, k] = (self.end_state(xp, period, speed) - xe) / h
@@ -246,11 +260,12 @@ class Shooting:
                  lin: tuple | None = None) -> np.ndarray:  # fmt: skip
         """Jacobian of :meth:`residual` with respect to ``u`` (38 x 39)."""
         _, m, d_period, d_speed = self.linearise(u) if lin is None else lin
-        a = m + np.eye(N_STATE) if self.symmetric else m - np.eye(N_STATE)
-        jac = np.empty((N_STATE, u.size))
-        jac[:, :-2] = (a * STATE_SCALE[None, :])[:, self._keep] / STATE_SCALE[:, None]
-        jac[:, -2] = d_period * self.T_SCALE / STATE_SCALE
-        jac[:, -1] = d_speed * self.V_SCALE / STATE_SCALE
+        n, scale = self.n_state, self.scale
+        a = m + np.eye(n) if self.symmetric else m - np.eye(n)
+        jac = np.empty((n, u.size))
+        jac[:, :-2] = (a * scale[None, :])[:, self._keep] / scale[:, None]
+        jac[:, -2] = d_period * self.T_SCALE / scale
+        jac[:, -1] = d_speed * self.V_SCALE / scale
         return jac
 
     def floquet(self, m: np.ndarray) -> np.ndarray:
@@ -264,7 +279,7 @@ class Shooting:
         if self.equilibrium is None:
             return bool(np.max(np.abs(u[:-2])) < MIN_STATE)
         x0, _, speed = self.unpack(u)
-        dev = (x0 - self.equilibrium(speed)) / STATE_SCALE
+        dev = (x0 - self.equilibrium(speed)) / self.scale
         return bool(np.max(np.abs(dev[self._keep])) < MIN_STATE)
 
     def amplitudes(self, x0: np.ndarray, period: float, speed: float) -> np.ndarray:
@@ -274,10 +289,11 @@ class Shooting:
         extremes); on a route half the peak-to-peak swing. Each extreme is refined by a
         parabola through the three samples around it.
         """
-        samples = np.empty((self.n_steps + 1, WHEELSET_Y[-1] + 1))
+        ys = self.wheelset_y
+        samples = np.empty((self.n_steps + 1, int(ys.max()) + 1))
         self.end_state(x0, period, speed, samples)
-        out = np.empty(4)
-        for j, col in enumerate(WHEELSET_Y):
+        out = np.empty(len(ys))
+        for j, col in enumerate(ys):
             if self.route is None:
                 out[j] = _peak(np.abs(samples[:, col]))
             else:
@@ -317,7 +333,7 @@ def periodic_orbit(
     symmetric: bool = True,
     dt: float | None = None,
     tol: float = 1e-8,
-    creep_law: str = "heuristic",
+    creep_law: str | None = None,
 ) -> PeriodicOrbit:
     """Limit cycle at a fixed speed by shooting from a guess.
 
@@ -352,7 +368,7 @@ def periodic_orbit(
     shoot = Shooting(model, symmetric=symmetric, dt=dt, dt_speed=speed)
     shoot.set_period_hint(period)
     x0 = np.array(x0, dtype=np.float64)
-    x0[PHASE_INDEX] = 0.0
+    x0[shoot.phase_index] = 0.0
     u0 = shoot.pack(x0, period, speed)[:-1]
     vs = speed / Shooting.V_SCALE
 

@@ -19,7 +19,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from railhunt.kernel.integrators import OK
-from railhunt.kernel.layout import N_STATE, WHEELSET_Y, Y_W1
 from railhunt.model import Model
 from railhunt.results import Columns, ResultDisplay, Row
 from railhunt.simulation import Y_LIMIT, auto_step, integrate_model
@@ -66,7 +65,7 @@ def critical_speed_ramp(
     step_kmh: float = 0.25,
     initial_amplitude: float = 0.008,
     death_fraction: float = 0.1,
-    creep_law: str = "heuristic",
+    creep_law: str | None = None,
 ) -> RampResult:
     """Lower the speed slowly from a limit cycle and report where the cycle dies.
 
@@ -106,12 +105,12 @@ def critical_speed_ramp(
                          f"{start_kmh} km/h")  # fmt: skip
     model = Model(vehicle, creep_law=creep_law)
     dt = auto_step(model, kmh_to_ms(start_kmh))
-    x = np.zeros(N_STATE)
-    x[WHEELSET_Y] = initial_amplitude
+    x = np.zeros(model.layout.n_state)
+    x[model.layout.wheelset_y] = initial_amplitude
     t, xs, code, _ = integrate_model(model, kmh_to_ms(start_kmh), 15.0, x, dt=dt, y_limit=Y_LIMIT)
     if code != OK:
         raise RuntimeError(f"the start run at {start_kmh} km/h failed (status {code})")
-    tail = np.abs(xs[t >= t[-1] - 2.0, Y_W1])
+    tail = np.abs(xs[t >= t[-1] - 2.0, model.layout.y_w1])
     a0 = float(tail.max())
     if a0 < 1e-4:
         raise RuntimeError(f"no limit cycle at start_kmh = {start_kmh} km/h: the motion decays")
@@ -144,7 +143,7 @@ def _staircase(model: Model, dt: float, x: np.ndarray, start_kmh: float, end_kmh
         if code != OK:
             raise RuntimeError(f"the ramp failed at {v:.2f} km/h (status {code})")
         x = xs[-1].copy()
-        a = float(np.max(np.abs(xs[:, Y_W1])))
+        a = float(np.max(np.abs(xs[:, model.layout.y_w1])))
         speeds.append(v)
         amps.append(a)
         states.append(x)

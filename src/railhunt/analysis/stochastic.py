@@ -65,13 +65,36 @@ def sum_y_limit(vehicle: Vehicle) -> float:
     return 0.5 * (10e3 + 2.0 * vehicle.N / 3.0)
 
 
+def running_gear(vehicle: Vehicle) -> list[tuple[str, float, list[tuple[str, float]]]]:
+    """The bogies of a layout: for each bogie frame (a ``frame`` body) its coordinate tag,
+    its mass with the wheelsets an element joins to it (kg), and those wheelsets' tags
+    with their distance ahead of the frame's centre (m). Empty for a layout without
+    frames (a two-axle wagon): EN 14363's bogie-frame acceleration does not exist there
+    and the criterion is judged on ΣY alone."""
+    from railhunt.layout.expressions import difference
+
+    layout, values = vehicle.layout, vehicle.values
+    out = []
+    for frame in (b for b in layout.bodies if b.kind == "frame" and b.coordinates):
+        joined = {el.body_b if el.body_a == frame.name else el.body_a for el in layout.elements
+                  if frame.name in (el.body_a, el.body_b)}  # fmt: skip
+        wheelsets = [w for w in layout.wheelsets if w.name in joined]
+        mass = frame.mass(values) + sum(w.mass(values) for w in wheelsets)
+        out.append((frame.tag, mass,
+                    [(w.tag, difference(w.x, frame.x, values)) for w in wheelsets]))
+    return out
+
+
 def bogie_mass(vehicle: Vehicle) -> float:
-    """Bogie mass ``M_t + 2*M_w`` (kg): frame and its two wheelsets."""
-    return vehicle.M_t + 2.0 * vehicle.M_w
+    """Bogie mass (kg): the first bogie frame and its wheelsets (``M_t + 2*M_w`` for the
+    paper's vehicle); NaN without a bogie frame."""
+    gear = running_gear(vehicle)
+    return gear[0][1] if gear else math.nan
 
 
 def acceleration_limit(vehicle: Vehicle) -> float:
-    """``ÿ+_lim,rms = (12 - M_b/5) / 2`` in m/s², ``M_b`` the bogie mass in t."""
+    """``ÿ+_lim,rms = (12 - M_b/5) / 2`` in m/s², ``M_b`` the bogie mass in t (NaN for a
+    layout without bogie frames)."""
     return 0.5 * (12.0 - bogie_mass(vehicle) / 1000.0 / 5.0)
 
 
@@ -130,7 +153,8 @@ class Assessment(ResultDisplay):
     @property
     def evaluated(self) -> bool:
         """True when the run covered at least one sliding window (the criterion has values)."""
-        return bool(self.sum_y_rms.size and self.acceleration_rms.size)
+        no_frames = self.acceleration_rms.ndim == 2 and self.acceleration_rms.shape[1] == 0
+        return bool(self.sum_y_rms.size and (self.acceleration_rms.size or no_frames))
 
     @property
     def verdict(self) -> str:
@@ -250,20 +274,24 @@ def assess(
     """
     t = result.t
     fs = 1.0 / float(np.median(np.diff(t)))
-    sum_y = np.column_stack([result[f"SY_w{j}"] for j in range(1, 5)])
-    l1 = vehicle.l1
-    acc = np.column_stack([
-        result["ddy_t1"] + l1 * result["ddpsi_t1"], result["ddy_t1"] - l1 * result["ddpsi_t1"],
-        result["ddy_t2"] + l1 * result["ddpsi_t2"], result["ddy_t2"] - l1 * result["ddpsi_t2"],
-    ])  # fmt: skip
+    sum_y = np.column_stack([result[f"SY_{b.tag}"] for b in result.layout.bodies
+                             if b.is_wheelset])  # fmt: skip
+    # The bogie frame's lateral acceleration above each of its wheelsets (l1 ahead and
+    # behind for the paper's vehicle); a layout without frames has none (ΣY alone).
+    columns = [result[f"ddy_{tag}"] + arm * result[f"ddpsi_{tag}"]
+               for tag, _, wheelsets in running_gear(vehicle) for _, arm in wheelsets]
+    acc = np.column_stack(columns) if columns else np.empty((t.size, 0))
     f0 = dominant_frequency(t, sum_y[:, 0]) if f0_hz is None else float(f0_hz)
     s = result.speed * t
     if not math.isfinite(f0) or t.size < 32:
         centres = np.empty(0)
-        rms_y = rms_a = np.empty((0, 4))
+        rms_y, rms_a = np.empty((0, sum_y.shape[1])), np.empty((0, acc.shape[1]))
     else:
         centres, rms_y = sliding_rms(s, band_pass(sum_y, fs, f0), window, step)
-        _, rms_a = sliding_rms(s, band_pass(acc, fs, f0), window, step)
+        if acc.shape[1]:
+            _, rms_a = sliding_rms(s, band_pass(acc, fs, f0), window, step)
+        else:
+            rms_a = np.empty((centres.size, 0))
     return Assessment(
         speed_kmh=result.speed_kmh, f0_hz=f0, distance=centres, sum_y_rms=rms_y,
         acceleration_rms=rms_a, sum_y_limit=sum_y_limit(vehicle),
@@ -362,7 +390,7 @@ def stochastic_critical_speed(
     min_kmh: float = 20.0,
     max_kmh: float = 800.0,
     dt: float | None = None,
-    creep_law: str = "heuristic",
+    creep_law: str | None = None,
     f0_hz: float | None = None,
     progress: Callable[[Assessment], None] | None = None,
 ) -> StochasticCriticalSpeedResult:

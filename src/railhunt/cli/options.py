@@ -158,8 +158,11 @@ def _parse_set(
     ctx: click.Context, param: click.Parameter, items: tuple[str, ...]
 ) -> dict[str, float]:
     """Option callback of ``--set``: ``NAME=VALUE`` items to a dict of checked SI floats."""
-    from railhunt.vehicle import UnknownParameterError, validate_value
+    from railhunt.vehicle import PARAMETERS, UnknownParameterError, validate_value
 
+    # --vehicle is eager (processed first): another layout's parameters are checked by
+    # Vehicle.replace when the vehicle is built (build_vehicle), against its own table.
+    other_vehicle = ctx.params.get("vehicle_file") is not None
     changes: dict[str, float] = {}
     for item in items:
         name, sep, text = item.partition("=")
@@ -174,6 +177,9 @@ def _parse_set(
             raise click.BadParameter(
                 f"{name}={text}: {text!r} is not a number (give the SI value, e.g. 1.5e5)"
             ) from None
+        if other_vehicle and name not in PARAMETERS:
+            changes[name] = value
+            continue
         try:
             changes[name] = validate_value(name, value)
         except UnknownParameterError as exc:
@@ -224,6 +230,7 @@ def vehicle_options(func: Callable[..., Any]) -> Callable[..., Any]:
         "--vehicle",
         "vehicle_file",
         metavar="FILE|NAME",
+        is_eager=True,
         callback=_vehicle_source,
         help="Vehicle TOML file (SI units), or the name of a vehicle shipped with railhunt: "
         "paper2019; s1002_uic60 (the paper's vehicle with S1002 wheels on UIC60 rails 1:40, "

@@ -5,6 +5,12 @@ Inside its free play it carries nothing; beyond it the force grows with the comp
 ``u = |d| - gap`` as ``K1 u + K3 u^3`` (a progressive rubber stop). It limits how far the
 car body can swing out on the soft air springs in a curve, and the amplitude of car body
 motion on straight track when the vehicle hunts violently.
+
+The same law with the track as the second body is a flange: a wheelset's lateral
+displacement relative to the rails, free inside the flange clearance ``gap``, then the
+rail's lateral stiffness (Cooperrider's dead-band spring ``k0 (y - delta)`` beyond
+``+-delta``: ``k1 = k0``, ``k3 = 0``); ``SystemArrays.stop_wheelset`` says which stops
+these are.
 """
 
 from __future__ import annotations

@@ -14,6 +14,15 @@ Two descriptions, chosen by the wheel/rail vector (:class:`railhunt.kernel.layou
 * a table of ``r_L, r_R, delta_L, delta_R`` on a uniform grid of ``y`` (from real
   profiles, :mod:`railhunt.contact.geometry`), interpolated linearly and held constant
   beyond its ends.
+
+Conical treads (a layout's ``contact = "conical"``: rolling radii ``r0 +- lambda y``, a
+constant contact angle ``gamma`` on both wheels) are the polynomials with ``lambda1 =
+lambda``, ``d0 = gamma``, ``delta_max = |gamma|`` and every other coefficient 0
+(:func:`conical_slots`). This is exactly, not approximately, the cone: with zero
+coefficients the Horner sums return ``r0 + lambda u`` and ``gamma`` bit for bit, so no
+separate code path is needed. With ``gamma = 0`` (a knife-edge rail) both contact angles
+are exactly 0: the normal loads have no lateral component (no gravitational stiffness,
+no gravitational yaw moment) and the spin creepage has no ``omega sin(delta)`` part.
 """
 
 from __future__ import annotations
@@ -22,6 +31,30 @@ import numpy as np
 from numba import njit
 
 from railhunt.kernel.layout import WR
+
+
+def conical_slots(conicity: float, contact_angle: float = 0.0) -> dict[int, float]:
+    """Wheel/rail slots of conical treads: rolling radii ``r0 +- conicity y``.
+
+    Parameters
+    ----------
+    conicity : float
+        Cone slope ``lambda`` (dimensionless, rad): ``d r / d u``.
+    contact_angle : float
+        Constant contact angle of both wheels (rad); 0: knife-edge rails.
+
+    Returns
+    -------
+    dict
+        ``{slot: value}`` for the slots :class:`~railhunt.kernel.layout.WR` ``LAMBDA1``
+        ... ``DELTA_MAX`` (the polynomial slots; ``TABLE`` must be 0).
+    """
+    slots = dict.fromkeys((WR.LAMBDA1, WR.LAMBDA2, WR.LAMBDA3, WR.LAMBDA4, WR.LAMBDA5,
+                           WR.D0, WR.D1, WR.D4, WR.D5), 0.0)  # fmt: skip
+    slots[WR.LAMBDA1] = float(conicity)
+    slots[WR.D0] = float(contact_angle)
+    slots[WR.DELTA_MAX] = abs(float(contact_angle))
+    return {int(k): v for k, v in slots.items()}
 
 
 @njit(cache=True)

@@ -11,6 +11,16 @@ tangential stress ``eps = (2/3) C pi a^2 b s / (mu N)``, ``C = (3/8) (G/a) c_jj`
 (Kalker's coefficients). Since ``(2/3) C pi a^2 b s = (pi/4) |F_Kalker|``, this is
 ``eps = (pi/4) beta`` with ``beta = |F_Kalker| / (mu N)``, the same input as the
 heuristic law: :func:`polach_saturation` returns ``alpha = F / (mu N beta)``.
+Vermeulen and Johnson (J. Appl. Mech. 31 (1964) 338-340) saturate the resultant of the
+longitudinal and lateral creepages: with ``u = sqrt((xi_x/phi)^2 + (xi_y/psi)^2)`` and
+``beta = G pi a b u / (mu N)``, ``F_R / (mu N) = beta - beta^2/3 + beta^3/27`` for
+``beta < 3`` and 1 beyond, each component following its creepage. With the creep
+coefficients ``f11 = G pi a b / phi``, ``f22 = G pi a b / psi`` this is
+``beta = |(f11 xi_x, f22 xi_y)| / (mu N)`` and every component scaled by the factor
+:func:`heuristic_saturation` gives (the same cubic as Eq. 28), wheel by wheel. Their
+theory has no spin: ``beta`` is formed without the spin terms, which (if ``f23`` is not
+0) are scaled by the same factor.
+
 Departure: Polach's separate spin term (``F_yS`` with ``K_M``) needs the ellipse
 semi-axes, which the model does not carry; the spin part of Kalker's lateral force is
 saturated together with the creepage part, as in the heuristic law.
@@ -31,6 +41,7 @@ class CreepLaw(IntEnum):
     HEURISTIC_PER_WHEEL = 1  # Eq. 28 with one factor per wheel
     LINEAR = 2  # Kalker's linear law, no saturation
     POLACH = 3  # Polach's saturation per wheel
+    VERMEULEN_JOHNSON = 4  # Vermeulen-Johnson: Eq. 28's cubic per wheel on f11 xi_x, f22 xi_y
 
 
 #: Creep-law names (as users write them) -> codes.

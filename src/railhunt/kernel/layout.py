@@ -15,8 +15,8 @@ below (``DOF_NAMES``, ``STATE_NAMES``, ``Y_W1``, ``WHEELSET_Y``, ``RATE0``, ``FO
 object layer's assembly, not a new right-hand side.
 
 The parameter vectors the kernel reads are laid out by :class:`WR` (wheel/rail
-parameters, followed by an optional contact table) and :class:`DamperParam` (one row per
-yaw damper).
+parameters, followed by an optional contact table; one row per wheelset) and
+:class:`DamperParam` (one row per yaw damper).
 """
 
 from __future__ import annotations
@@ -48,11 +48,19 @@ class Body:
     coordinates : tuple of str
         Its coordinates in state order, from ``"y"`` (lateral, m), ``"psi"`` (yaw, rad)
         and ``"phi"`` (roll, rad).
+    kind : str
+        ``"car"``, ``"frame"``, ``"wheelset"``; empty: from the name (``wheelset*``).
     """
 
     name: str
     tag: str
     coordinates: tuple[str, ...]
+    kind: str = ""
+
+    @property
+    def is_wheelset(self) -> bool:
+        """Whether the body is a wheelset (runs on the rails)."""
+        return self.kind == "wheelset" or (not self.kind and self.name.startswith("wheelset"))
 
 
 @dataclass(frozen=True)
@@ -136,7 +144,7 @@ class StateLayout:
     @property
     def wheelsets(self) -> tuple[str, ...]:
         """Names of the wheelsets (bodies named ``wheelset*``), leading first."""
-        return tuple(b.name for b in self.bodies if b.name.startswith("wheelset"))
+        return tuple(b.name for b in self.bodies if b.is_wheelset)
 
     def body_index(self) -> np.ndarray:
         """Indices of ``(y, psi, phi)`` of every body in ``q`` (-1: none), shape (n, 3)."""
@@ -147,6 +155,33 @@ class StateLayout:
         return np.array(
             [self.body_dofs(w)[:2] for w in self.wheelsets], dtype=np.int64
         ).reshape(-1, 2)
+
+    @property
+    def wheelset_y(self) -> np.ndarray:
+        """Indices of the wheelsets' lateral displacements in ``q`` (and the state)."""
+        return self.wheelset_index()[:, 0].copy()
+
+    @property
+    def wheelset_psi(self) -> np.ndarray:
+        """Indices of the wheelsets' yaw angles in ``q``."""
+        return self.wheelset_index()[:, 1].copy()
+
+    @property
+    def y_w1(self) -> int:
+        """Index of the leading (first) wheelset's lateral displacement."""
+        return int(self.wheelset_index()[0, 0])
+
+    @property
+    def body_y(self) -> np.ndarray:
+        """Indices of the lateral displacements of the bodies that are not wheelsets."""
+        return np.array([self.body_dofs(b.name)[0] for b in self.bodies
+                         if not b.is_wheelset and "y" in b.coordinates],
+                        dtype=np.int64)  # fmt: skip
+
+    @property
+    def forces(self) -> slice:
+        """Slice of the damper forces in the state vector."""
+        return slice(self.force0, self.force0 + self.n_damper)
 
 
 _LATERAL_YAW_ROLL = ("y", "psi", "phi")
@@ -286,6 +321,10 @@ class RouteColumn(IntEnum):
 N_ROUTE = len(RouteColumn)
 
 
+#: No bump stop acts against the track (default of ``SystemArrays.stop_wheelset``).
+NO_TRACK_STOPS = np.zeros(0, dtype=np.int64)
+
+
 class SystemArrays(NamedTuple):
     """Everything the compiled right-hand side needs besides ``(t, x, v)``.
 
@@ -302,8 +341,11 @@ class SystemArrays(NamedTuple):
         ``-M^-1 B_d^T``: accelerations per unit damper force.
     damper : numpy.ndarray, shape (n_damper, 4)
         Damper parameters, columns :class:`DamperParam`.
-    wheel_rail : numpy.ndarray
-        Wheel/rail parameters, slots :class:`WR`.
+    wheel_rail : numpy.ndarray, shape (n_wheelsets, width)
+        Wheel/rail parameters, one row per wheelset (slots :class:`WR`), so wheelsets may
+        differ in mass, load, radius, contact geometry and creep law. Rows are padded
+        with zeros to the longest contact table; each row's ``TABLE`` slot says how much
+        of it is used. Slot ``G`` (gravity) is read from the first row.
     wheelsets : numpy.ndarray of int64, shape (n_wheelsets, 2)
         Indices of each wheelset's ``(y, psi)`` in ``q``.
     wheelset_delay : numpy.ndarray, shape (n_wheelsets,)
@@ -332,6 +374,12 @@ class SystemArrays(NamedTuple):
     scratch : numpy.ndarray, shape (3 n_dof,)
         Work space of the curve terms (overwritten at every call; the kernel is used by
         one thread at a time per bundle).
+    stop_wheelset : numpy.ndarray of int64, shape (n_stop,) or (0,)
+        For each bump stop, the wheelset whose rails are its second body (a flange: its
+        deformation is ``stop_rows @ q`` minus the rails' lateral alignment at that
+        wheelset, the track input with the wheelset's delay), -1 for a stop between two
+        bodies of the vehicle. Shorter than ``stop`` (default: empty): the missing stops
+        are between bodies.
     """
 
     linear: np.ndarray
@@ -351,3 +399,4 @@ class SystemArrays(NamedTuple):
     body_delay: np.ndarray
     suspension: np.ndarray
     scratch: np.ndarray
+    stop_wheelset: np.ndarray = NO_TRACK_STOPS

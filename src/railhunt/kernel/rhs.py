@@ -2,7 +2,8 @@
 
 ``M q'' = -(K + G) q - C q' - B_d^T F_d - B_s^T F_s + Q_wheel/rail (+ curve terms)``, with
 ``K``, ``C`` assembled from the suspension elements, ``G`` the gravitational roll terms,
-``B_d`` the yaw damper elongation rows, ``B_s`` the bump stops' rows and ``Q_wheel/rail``
+``B_d`` the yaw damper elongation rows, ``B_s`` the bump stops' rows (a stop to the track,
+a flange, deforms by ``B_s q`` minus the rails' alignment at its wheelset) and ``Q_wheel/rail``
 the creep and gravitational forces on the wheelsets. Each damper force obeys
 ``dF/dt = K_d (B_d q' - v_d(F))`` (Maxwell element). In a curve every coordinate is
 measured from the track at its body's own position; the suspension then deforms by
@@ -91,9 +92,10 @@ def wheelset_track_forces(
     ip = s.wheelsets[j, 1]
     pos = v * t - s.wheelset_delay[j]
     yr, slope = alignment(pos, s.track, s.track_samples)
-    q_l, q_r, track_rate = wheel_loads(pos, v, s.wheel_rail, s.route)
+    wr = s.wheel_rail[j]
+    q_l, q_r, track_rate = wheel_loads(pos, v, wr, s.route)
     fy, mz, f_l, f_r = wheelset_contact(x[iy] - yr, x[nq + iy], x[ip], x[ip] - slope,
-                                        x[nq + ip], x[nq + ip] + track_rate, v, s.wheel_rail,
+                                        x[nq + ip], x[nq + ip] + track_rate, v, wr,
                                         q_l, q_r)  # fmt: skip
     return fy, mz, f_l, f_r, q_l, q_r
 
@@ -142,7 +144,7 @@ def curve_geometry(t: float, v: float, s: SystemArrays) -> np.ndarray:
     """:func:`curve_offsets` of the bundle at time ``t``: ``[q_geo, dq_geo/dt, body_acc]``
     (a new array of length ``3 n_dof``), for the analyses."""
     geo = np.zeros(3 * s.linear.shape[0])
-    curve_offsets(t, v, s.wheel_rail, s.route, s.bodies, s.body_delay, geo)
+    curve_offsets(t, v, s.wheel_rail[0], s.route, s.bodies, s.body_delay, geo)
     return geo
 
 
@@ -193,11 +195,15 @@ def rhs(t: float, x: np.ndarray, v: float, s: SystemArrays, out: np.ndarray) -> 
         out[fz + d] = dpar[d, DamperParam.K_D] * (rate - v_damp)
         for i in range(nq):
             out[nq + i] += dd[i, d] * f
-    # Bump stops (in a curve corrected below for the geometric offsets).
+    # Bump stops (in a curve corrected below for the geometric offsets); a stop to the
+    # track (a flange) deforms by its wheelset's displacement relative to the rails there.
+    n_track_stop = s.stop_wheelset.shape[0]
     for k in range(stop.shape[0]):
         dist = 0.0
         for i in range(nq):
             dist += stop_rows[k, i] * x[i]
+        if k < n_track_stop and s.stop_wheelset[k] >= 0:
+            dist -= alignment(v * t - delay[s.stop_wheelset[k]], trk, trs)[0]
         f = bump_stop_force(dist, stop[k, StopParam.GAP], stop[k, StopParam.K1],
                             stop[k, StopParam.K3])  # fmt: skip
         if f != 0.0:
@@ -206,22 +212,21 @@ def rhs(t: float, x: np.ndarray, v: float, s: SystemArrays, out: np.ndarray) -> 
 
     # Wheel/rail forces: wheelset j meets the track at v t - delay_j (the track input there,
     # and in a curve its wheel loads and the track's yaw rate).
-    inv_mw = wr[WR.INV_MW]
-    inv_jw = wr[WR.INV_JW]
-    n_load = wr[WR.N]
     for j in range(ws.shape[0]):
+        row = wr[j]  # this wheelset's own parameters (mass, load, radius, contact, creep)
+        n_load = row[WR.N]
         iy = ws[j, 0]
         ip = ws[j, 1]
         pos = v * t - delay[j]
         yr, slope = alignment(pos, trk, trs)
         if curved:
-            q_l, q_r, track_rate = wheel_loads(pos, v, wr, route)
+            q_l, q_r, track_rate = wheel_loads(pos, v, row, route)
         else:
             q_l, q_r, track_rate = n_load, n_load, 0.0
         fy, mz, _, _ = wheelset_contact(x[iy] - yr, x[nq + iy], x[ip], x[ip] - slope,
-                                        x[nq + ip], x[nq + ip] + track_rate, v, wr, q_l, q_r)
-        out[nq + iy] += fy * inv_mw
-        out[nq + ip] += mz * inv_jw
+                                        x[nq + ip], x[nq + ip] + track_rate, v, row, q_l, q_r)
+        out[nq + iy] += fy * row[WR.INV_MW]
+        out[nq + ip] += mz * row[WR.INV_JW]
 
     if not curved:
         return
@@ -229,7 +234,7 @@ def rhs(t: float, x: np.ndarray, v: float, s: SystemArrays, out: np.ndarray) -> 
     # frames, the unbalanced lateral acceleration and the frames' angular acceleration
     # (curve_offsets), the yaw dampers' stroke rate from the frames' relative motion (the
     # Maxwell element's force rate is linear in it), the bump stops at B_s (q + q_geo).
-    curve_offsets(t, v, wr, route, bodies, body_delay, geo)
+    curve_offsets(t, v, wr[0], route, bodies, body_delay, geo)
     for i in range(nq):
         acc = geo[fz + i]
         for k in range(2 * nq):
@@ -241,6 +246,8 @@ def rhs(t: float, x: np.ndarray, v: float, s: SystemArrays, out: np.ndarray) -> 
             rate += bd[d, k] * geo[nq + k]
         out[fz + d] += dpar[d, DamperParam.K_D] * rate
     for k in range(stop.shape[0]):
+        if k < n_track_stop and s.stop_wheelset[k] >= 0:
+            continue  # a flange: the wheelset's coordinates already follow its own rails
         dist = 0.0
         shift = 0.0
         for i in range(nq):

@@ -76,11 +76,14 @@ def wheelset_contact(
     sl = (yaw_rate * cdl - omega * sdl) * inv_v
     sr = (yaw_rate * cdr + omega * sdr) * inv_v
     # Kalker's linear forces (Eq. 26), coefficients following each wheel's load.
+    # (cyl, cyr: the lateral forces of the lateral creepage alone, without spin.)
     if q_left == n_load and q_right == n_load:
         fxl = -f11 * xl
         fxr = -f11 * xr
-        fyl = -f22 * yl - f23 * sl
-        fyr = -f22 * yr - f23 * sr
+        cyl = -f22 * yl
+        cyr = -f22 * yr
+        fyl = cyl - f23 * sl
+        fyr = cyr - f23 * sr
         mzl = f23 * yl - f33 * sl
         mzr = f23 * yr - f33 * sr
     else:
@@ -90,13 +93,25 @@ def wheelset_contact(
         pr = rr ** (2.0 / 3.0)
         fxl = -f11 * pl * xl
         fxr = -f11 * pr * xr
-        fyl = -f22 * pl * yl - f23 * rl * sl
-        fyr = -f22 * pr * yr - f23 * rr * sr
+        cyl = -f22 * pl * yl
+        cyr = -f22 * pr * yr
+        fyl = cyl - f23 * rl * sl
+        fyr = cyr - f23 * rr * sr
         mzl = f23 * rl * yl - f33 * rl * pl * sl
         mzr = f23 * rr * yr - f33 * rr * pr * sr
     # Saturation (Eqs. 27-28), each wheel against its own mu * Q.
     law = int(wr[WR.CREEP_LAW])
-    if law != CreepLaw.LINEAR:
+    if law == CreepLaw.VERMEULEN_JOHNSON:
+        # The resultant of the creepage forces alone (f11 xi_x, f22 xi_y: Vermeulen and
+        # Johnson's theory has no spin), per wheel; every force follows with its factor.
+        mu = wr[WR.MU]
+        al = heuristic_saturation(math.sqrt(fxl * fxl + cyl * cyl) / (mu * q_left))
+        ar = heuristic_saturation(math.sqrt(fxr * fxr + cyr * cyr) / (mu * q_right))
+        fxl *= al
+        fyl *= al
+        fxr *= ar
+        fyr *= ar
+    elif law != CreepLaw.LINEAR:
         mu = wr[WR.MU]
         bl = math.sqrt(fxl * fxl + fyl * fyl) / (mu * q_left)
         br = math.sqrt(fxr * fxr + fyr * fyr) / (mu * q_right)

@@ -251,10 +251,11 @@ def curve_entry_figure(run: SimulationResult, vehicle: Vehicle, *, curve: Curve 
     for k in range(1, n_dampers + 1):
         ax_f.plot(s, run[f"F_d{k}"] * 1e-3, color=colours[(k - 1) % 6], lw=1.0,
                   label=f"F_d{k}")  # fmt: skip
-    if vehicle.F_u < NO_BLOWOFF:
+    f_u = vehicle.blowoff_force
+    if f_u < NO_BLOWOFF:  # NaN (no yaw damper) draws no line
         for sign in (1, -1):
-            ax_f.axhline(sign * vehicle.F_u * 1e-3, color="k", ls="--", lw=1.0,
-                         label=f"blow-off force F_u = {vehicle.F_u * 1e-3:g} kN"
+            ax_f.axhline(sign * f_u * 1e-3, color="k", ls="--", lw=1.0,
+                         label=f"blow-off force F_u = {f_u * 1e-3:g} kN"
                          if sign > 0 else None)  # fmt: skip
     ax_f.set_ylabel("yaw damper force (kN)")
     ax_f.set_title("(b) yaw dampers", loc="left", fontsize="medium")

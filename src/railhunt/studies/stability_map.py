@@ -59,7 +59,7 @@ def curve_for(vehicle: Vehicle, radius: float, cant: float, cant_deficiency: flo
     if radius == math.inf:
         return None
     if cant_deficiency is not None:
-        return fixed_deficiency(radius, cant_deficiency, direction, g=vehicle.g)
+        return fixed_deficiency(radius, cant_deficiency, direction, g=vehicle.gravity)
     return Curve(radius, cant, direction=direction)
 
 
@@ -120,7 +120,7 @@ def stability_map(
     direction: str = "left",
     outputs: Sequence[str] = MAP_OUTPUTS,
     excitation: object = None,
-    creep_law: str = "heuristic",
+    creep_law: str | None = None,
     out: str | Path | None = None,
     resume: bool = False,
     overwrite: bool = False,
@@ -212,7 +212,7 @@ def _describe(vehicle: Vehicle, radii: list[float], cant: float,
         "radii": [r if math.isfinite(r) else "inf" for r in radii],
         "direction": direction,
         "outputs": list(outputs),
-        "creep_law": creep_law,
+        "creep_law": creep_law if creep_law is not None else vehicle.assembly.creep_laws[0],
         "points": len(radii),
         "parameter_columns": param_cols,
         "columns": columns_for(param_cols, outputs),

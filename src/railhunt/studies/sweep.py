@@ -49,7 +49,7 @@ def evaluate_point(
     outputs: Sequence[str] = OUTPUTS,
     frequency_speed_kmh: float = 350.0,
     excitation: object = None,
-    creep_law: str = "heuristic",
+    creep_law: str | None = None,
     frequency_amplitude: float | None = None,
 ) -> dict[str, Any]:
     """Evaluate one point of a study: the results row of ``vehicle`` changed by the point.
@@ -172,7 +172,7 @@ def sweep(
     frequency_speed_kmh: float | None = None,
     frequency_amplitude: float | None = None,
     excitation: object = None,
-    creep_law: str = "heuristic",
+    creep_law: str | None = None,
     out: str | Path | None = None,
     resume: bool = False,
     overwrite: bool = False,
@@ -307,7 +307,7 @@ def _describe(vehicle: Vehicle, parameters: Mapping[str, object], outputs: tuple
         "parameters": {n: _json_values(parameters[n]) for n in names},
         "ties": {f: [lf[0], lf[1]] for f, lf in tie_map.items()},
         "outputs": list(outputs),
-        "creep_law": creep_law,
+        "creep_law": creep_law if creep_law is not None else vehicle.assembly.creep_laws[0],
         "points": len(points),
         "parameter_columns": param_cols,
         "columns": columns_for(param_cols, outputs),

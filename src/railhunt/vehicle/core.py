@@ -1,31 +1,42 @@
-"""The :class:`Vehicle`: a validated, immutable parameter set of the 17-DOF vehicle model."""
+"""The :class:`Vehicle`: a layout (bodies, force elements, wheel/rail data) and the
+validated values of its named parameters."""
 
 import dataclasses
 import os
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Self
+from typing import TYPE_CHECKING, Any, Self
 
 from railhunt.vehicle.contact import ContactSpec
-from railhunt.vehicle.errors import DerivedParameterError, UnknownParameterError
-from railhunt.vehicle.parameters import DERIVED, PARAMETERS, VehicleFields, validate_all
+from railhunt.vehicle.errors import (
+    DerivedParameterError,
+    UnknownParameterError,
+)
+from railhunt.vehicle.parameters import DERIVED, validate_with
+
+if TYPE_CHECKING:
+    from railhunt.layout.assembly import Assembly
+    from railhunt.layout.spec import LayoutSpec
 
 __all__ = ["Vehicle"]
 
+_IDENTITY = ("name", "description", "contact", "layout", "values")
 
-@dataclass(frozen=True, kw_only=True, repr=False)
-class Vehicle(VehicleFields):
-    """Validated, immutable parameter set of the 17-DOF vehicle (SI units).
 
-    Construct with every parameter as a keyword (see :data:`PARAMETERS` for names, units
-    and meanings), or use :meth:`paper2019`, :func:`load_vehicle` or :meth:`replace`.
-    The constructor validates every value; a :class:`ParameterError` is raised otherwise.
-    The fields (one per parameter, in :data:`PARAMETERS` order, after ``name``,
-    ``description`` and ``contact``) are declared in the parameter table,
-    :class:`railhunt.vehicle.parameters.VehicleFields`.
+@dataclass(frozen=True, init=False, repr=False, eq=False)
+class Vehicle:
+    """A vehicle: its layout and the validated, immutable values of its parameters (SI).
 
-    Two vehicles are equal (and hash equal) when their names and all parameters are
-    equal; the description is ignored.
+    Construct with :meth:`paper2019`, :meth:`shipped`, :func:`load_vehicle` or
+    :meth:`replace`; or with every parameter as a keyword (``Vehicle(name="x", M_c=...,
+    ...)``: the paper's layout, see :data:`PARAMETERS`). Every value is checked against its
+    rule and the layout against its parameters; a :class:`ParameterError` (or a
+    :class:`~railhunt.layout.spec.LayoutError`) is raised otherwise. ``vehicle.NAME`` is
+    the value of parameter ``NAME``.
+
+    Two vehicles are equal (and hash equal) when their names, layouts, contact and all
+    parameters are equal; the description is ignored.
 
     Parameters
     ----------
@@ -34,23 +45,74 @@ class Vehicle(VehicleFields):
     description : str
         Free text.
     contact : ContactSpec, optional
-        Contact geometry from profiles (tabulated in the model); None: the polynomials.
-    M_c, C_d1 : float
-        Every parameter of :data:`PARAMETERS` is one keyword, in its SI unit (``M_c``, the
-        car body mass in kg; ``C_d1``, the yaw damper's first-stage damping in N*s/m; ...).
+        Contact geometry from profiles (tabulated in the model); None: the layout's.
+    layout : LayoutSpec, optional
+        Bodies, elements and wheel/rail data; default: the paper's vehicle
+        (``paper2019.toml``).
+    values : Mapping[str, float], optional
+        The parameters by name (SI); more may be given as keywords.
+    **parameters : float
+        Parameter values by name (``M_c``, the car body mass in kg; ...).
     """
 
-    def __post_init__(self) -> None:
-        if not isinstance(self.name, str) or not self.name.strip():
-            raise ValueError(f"vehicle name must be a non-empty string, got {self.name!r}")
-        if not isinstance(self.description, str):
-            raise ValueError(f"vehicle description must be a string, got {self.description!r}")
-        if self.contact is not None and not isinstance(self.contact, ContactSpec):
+    name: str
+    description: str
+    contact: ContactSpec | None
+    layout: "LayoutSpec"
+    values: Mapping[str, float]
+
+    def __init__(self, *, name: str = "custom", description: str = "",
+                 contact: ContactSpec | None = None, layout: "LayoutSpec | None" = None,
+                 values: Mapping[str, float] | None = None, **parameters: Any) -> None:  # fmt: skip
+        if not isinstance(name, str) or not name.strip():
+            raise ValueError(f"vehicle name must be a non-empty string, got {name!r}")
+        if not isinstance(description, str):
+            raise ValueError(f"vehicle description must be a string, got {description!r}")
+        if contact is not None and not isinstance(contact, ContactSpec):
             raise ValueError(f"vehicle contact must be a ContactSpec or None, got "
-                             f"{self.contact!r}")  # fmt: skip
-        values = validate_all({name: getattr(self, name) for name in PARAMETERS})
-        for name, value in values.items():
-            object.__setattr__(self, name, value)
+                             f"{contact!r}")  # fmt: skip
+        if layout is None:
+            from railhunt.vehicle.files import paper_layout
+
+            layout = paper_layout()
+        given = {**(values or {}), **parameters}
+        specs = layout.specs
+        if values is None:
+            missing = [n for n, s in specs.items() if n not in given and s.default is None]
+            if missing:
+                raise TypeError(f"Vehicle() missing {len(missing)} required parameter(s): "
+                                f"{', '.join(missing)}")  # fmt: skip
+        checked = validate_with(given, specs, layout.consistency)
+        for key, value in (("name", name), ("description", description), ("contact", contact),
+                           ("layout", layout), ("values", checked)):  # fmt: skip
+            object.__setattr__(self, key, value)
+        from railhunt.layout.assembly import assemble_layout
+
+        object.__setattr__(self, "_assembly", assemble_layout(layout, checked))
+
+    # -- parameters as attributes ---------------------------------------------------------
+
+    def __getattr__(self, key: str) -> float:
+        if key.startswith("__"):
+            raise AttributeError(key)
+        values = self.__dict__.get("values")
+        if values is not None and key in values:
+            return values[key]
+        raise AttributeError(f"vehicle {self.__dict__.get('name')!r} has no parameter or "
+                             f"attribute {key!r}")  # fmt: skip
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Vehicle):
+            return NotImplemented
+        return (self.name == other.name and self.contact == other.contact
+                and self.layout == other.layout and dict(self.values) == dict(other.values))
+
+    def __hash__(self) -> int:
+        return hash((self.name, self.contact, self.layout, tuple(sorted(self.values.items()))))
+
+    def __reduce__(self) -> tuple:
+        return (_rebuild, (self.name, self.description, self.contact, self.layout,
+                           dict(self.values)))  # fmt: skip
 
     # -- constructors -------------------------------------------------------------------
 
@@ -83,8 +145,18 @@ class Vehicle(VehicleFields):
         vehicle = load_shipped(name)
         if type(vehicle) is not cls:  # subclass: rebuild as that class
             return cls(name=vehicle.name, description=vehicle.description,
-                       contact=vehicle.contact, **vehicle.as_dict())  # fmt: skip
+                       contact=vehicle.contact, layout=vehicle.layout,
+                       values=vehicle.as_dict())  # fmt: skip
         return vehicle  # type: ignore[return-value]
+
+    @classmethod
+    def from_toml(cls, path: str | os.PathLike[str]) -> "Vehicle":
+        """Read a vehicle or layout file (:func:`railhunt.vehicle.load_vehicle`)."""
+        from railhunt.vehicle.files import load_vehicle
+
+        return load_vehicle(path)
+
+    load = from_toml
 
     def replace(self, **changes: Any) -> Self:
         """Return a validated copy with some parameters (or name/description) changed.
@@ -92,7 +164,8 @@ class Vehicle(VehicleFields):
         Parameters
         ----------
         **changes
-            New SI values by parameter name; ``name`` and ``description`` are accepted too.
+            New SI values by parameter name; ``name``, ``description``, ``contact`` and
+            ``layout`` are accepted too.
 
         Returns
         -------
@@ -109,12 +182,13 @@ class Vehicle(VehicleFields):
             If a new value, or the resulting set, breaks a rule.
         """
         for key, value in changes.items():
-            if key in ("name", "description", "contact"):
+            if key in _IDENTITY:
+                continue
+            if key in self.values:
                 continue
             if key in DERIVED:
                 raise DerivedParameterError(key, value)
-            if key not in PARAMETERS:
-                raise UnknownParameterError(key, value)
+            raise UnknownParameterError(key, value, known=tuple(self.values))
         return dataclasses.replace(self, **changes)
 
     # -- derived quantities -------------------------------------------------------------
@@ -122,25 +196,74 @@ class Vehicle(VehicleFields):
     @property
     def v_u(self) -> float:
         """Blow-off velocity of the yaw damper, ``F_u / C_d1``, in m/s."""
-        return self.F_u / self.C_d1
+        try:
+            return self.values["F_u"] / self.values["C_d1"]
+        except KeyError:
+            raise AttributeError(f"vehicle {self.name!r} has no F_u and C_d1 (v_u)") from None
 
     @property
     def N(self) -> float:
-        """Wheel normal load, ``W * g / 2``, in N."""
-        return self.W * self.g / 2.0
+        """Wheel normal load (N): ``W * g / 2`` for a vehicle with parameters ``W`` and
+        ``g``, else the leading wheelset's static load."""
+        if "W" in self.values and "g" in self.values:
+            return self.values["W"] * self.values["g"] / 2.0
+        from railhunt.kernel.layout import WR
+
+        return float(self.assembly.wheel_rail[0, WR.N])
+
+    @property
+    def gravity(self) -> float:
+        """Acceleration of gravity of the layout (m/s^2; ``g`` for the paper's vehicle)."""
+        from railhunt.kernel.layout import WR
+
+        return float(self.assembly.wheel_rail[0, WR.G])
+
+    @property
+    def blowoff_force(self) -> float:
+        """Blow-off force of the first Maxwell element (N; ``F_u`` for the paper's
+        vehicle); NaN for a layout without one."""
+        from railhunt.kernel.layout import DamperParam
+
+        d = self.assembly.damper
+        return float(d[0, DamperParam.F_U]) if d.shape[0] else float("nan")
+
+    @property
+    def length(self) -> float:
+        """Distance from the leading to the last wheelset (m)."""
+        return float(self.assembly.wheelset_delay.max())
+
+    @property
+    def assembly(self) -> "Assembly":
+        """The layout's matrices and rows for these values (built once)."""
+        return self.__dict__["_assembly"]
 
     # -- views ---------------------------------------------------------------------------
 
+    @property
+    def parameters(self) -> dict[str, Any]:
+        """The vehicle's parameters: name -> :class:`ParameterSpec` (unit, meaning, rule)."""
+        return self.layout.specs
+
+    def source(self, name: str) -> str:
+        """Where parameter ``name``'s value comes from (as its file says)."""
+        return dict(self.layout.sources).get(name, "")
+
     def as_dict(self) -> dict[str, float]:
-        """Parameters as a new dict name -> SI float, in :data:`PARAMETERS` order."""
-        return {name: getattr(self, name) for name in PARAMETERS}
+        """Parameters as a new dict name -> SI float, in the layout's order."""
+        return dict(self.values)
 
     def derived(self) -> dict[str, float]:
-        """Derived quantities ``{"v_u": m/s, "N": N}``."""
-        return {"v_u": self.v_u, "N": self.N}
+        """Derived quantities ``{"v_u": m/s, "N": N}`` (those the vehicle has)."""
+        out = {}
+        for key in ("v_u", "N"):
+            try:
+                out[key] = getattr(self, key)
+            except AttributeError:
+                pass
+        return out
 
     def parameter_table(self, include_derived: bool = False) -> list[tuple[str, float, str, str]]:
-        """Rows ``(name, value, unit, meaning)`` for reports, in :data:`PARAMETERS` order.
+        """Rows ``(name, value, unit, meaning)`` for reports, in the layout's order.
 
         Parameters
         ----------
@@ -151,36 +274,57 @@ class Vehicle(VehicleFields):
         -------
         list of tuple (str, float, str, str)
         """
-        rows = [(s.name, getattr(self, s.name), s.unit, s.meaning) for s in PARAMETERS.values()]
+        specs = self.layout.specs
+        rows = [(n, v, specs[n].unit, specs[n].meaning) for n, v in self.values.items()]
         if include_derived:
+            values = self.derived()
             for spec in DERIVED.values():
-                meaning = f"{spec.meaning} (derived: {spec.formula})"
-                rows.append((spec.name, getattr(self, spec.name), spec.unit, meaning))
+                if spec.name in values:
+                    meaning = f"{spec.meaning} (derived: {spec.formula})"
+                    rows.append((spec.name, values[spec.name], spec.unit, meaning))
         return rows
 
     def __repr__(self) -> str:
-        return f"Vehicle({self.name!r}, {len(PARAMETERS)} parameters)"
+        return f"Vehicle({self.name!r}, {len(self.values)} parameters)"
 
     # -- output -------------------------------------------------------------------------
 
-    def to_toml(self, path: str | os.PathLike[str]) -> Path:
-        """Write the vehicle as a complete TOML vehicle file (read back by :func:`load_vehicle`).
+    def to_toml(self, path: str | os.PathLike[str], overwrite: bool = False) -> Path:
+        """Write the vehicle as a complete layout file (read back by :func:`load_vehicle`):
+        its parameters with unit, meaning, source and rule, its bodies, elements and
+        wheel/rail data.
 
         Parameters
         ----------
         path : str or os.PathLike
-            Destination file (overwritten).
+            Destination file.
+        overwrite : bool
+            Replace an existing file (refused otherwise).
 
         Returns
         -------
         pathlib.Path
             The path written.
+
+        Raises
+        ------
+        FileExistsError
+            The file exists and ``overwrite`` is False.
         """
         path = Path(path)
+        if path.exists() and not overwrite:
+            raise FileExistsError(f"{path} exists: pass overwrite=True to replace it")
         path.write_text(self._toml_text(), encoding="utf-8")
         return path
 
     def _toml_text(self) -> str:
-        from railhunt.vehicle.files import vehicle_toml
+        from railhunt.layout.writer import layout_toml
 
-        return vehicle_toml(self)
+        return layout_toml(self)
+
+
+def _rebuild(name: str, description: str, contact: ContactSpec | None, layout: Any,
+             values: dict[str, float]) -> Vehicle:  # fmt: skip
+    return Vehicle(name=name, description=description, contact=contact, layout=layout,
+                   values=values)
+

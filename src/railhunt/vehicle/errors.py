@@ -87,16 +87,19 @@ class UnknownParameterError(ParameterError):
         Close known names (``difflib``), best first; may be empty.
     """
 
-    def __init__(self, parameter: str, value: object = None) -> None:
+    def __init__(self, parameter: str, value: object = None,
+                 known: tuple[str, ...] | None = None) -> None:  # fmt: skip
         from railhunt.vehicle.parameters import PARAMETERS, suggest
 
-        suggestions = suggest(parameter)
+        suggestions = suggest(parameter, known)
         if suggestions:
             quoted = [repr(s) for s in suggestions]
             options = quoted[0] if len(quoted) == 1 else f"{', '.join(quoted[:-1])} or {quoted[-1]}"
             hint = f"did you mean {options}?"
-        else:
+        elif known is None or set(known) == set(PARAMETERS):
             hint = f"see railhunt.vehicle.PARAMETERS for the {len(PARAMETERS)} known names"
+        else:
+            hint = f"the vehicle's {len(known)} parameters are: {', '.join(known)}"
         super().__init__(
             parameter,
             value,

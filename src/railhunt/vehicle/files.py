@@ -7,13 +7,14 @@ with ``value`` and optional ``unit``, ``meaning``, ``source``) and an optional
 the files of ``railhunt/data/vehicles``; they cannot themselves have a base.
 """
 
+import dataclasses
 import functools
 import math
 import os
 import tomllib
 from importlib import resources
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from railhunt.vehicle.contact import ContactSpec
 from railhunt.vehicle.core import Vehicle
@@ -34,12 +35,20 @@ from railhunt.vehicle.parameters import (
     validate_value,
 )
 
-__all__ = ["load_shipped", "load_vehicle", "shipped_vehicles", "vehicle_toml"]
+if TYPE_CHECKING:
+    from railhunt.layout.spec import LayoutSpec
+
+__all__ = ["paper_layout", "load_shipped", "load_vehicle", "shipped_vehicles", "vehicle_toml"]
 
 _DATA_PACKAGE = "railhunt"
 _VEHICLE_DIR = ("data", "vehicles")
 _TABLE_KEYS = frozenset({"value", "unit", "meaning", "source"})
-_VEHICLE_KEYS = frozenset({"name", "description", "base"})
+# A layout file's parameter tables also state the rule (read by railhunt.layout.params;
+# a file of the paper's parameters may carry them: the paper's own rules apply).
+_RULE_KEYS = frozenset({"rule", "min", "max", "above", "below", "reason", "default",
+                        "greater_than"})  # fmt: skip
+_VEHICLE_KEYS = frozenset({"name", "description", "base", "gravity", "source"})
+_LAYOUT_SECTIONS = frozenset({"body", "element", "wheel_rail"})
 _CONTACT_KEYS = frozenset({"wheel", "rail", "rail_inclination", "gauge", "back_to_back",
                            "wheel_radius", "y_max", "y_step"})  # fmt: skip
 
@@ -70,6 +79,44 @@ def shipped_vehicles() -> tuple[str, ...]:
     suffix = ".toml"
     files = (p.name for p in _shipped_dir().iterdir())
     return tuple(sorted(f[: -len(suffix)] for f in files if f.endswith(suffix)))
+
+
+@functools.cache
+def paper_layout() -> "LayoutSpec":
+    """The layout of the paper's vehicle (``paper2019.toml``), read once."""
+    path = shipped_path("paper2019")
+    data = _parse_toml(path.read_text(encoding="utf-8"), str(path))
+    return _layout_from_data(data, str(path))[0]
+
+
+def _layout_from_data(data: dict[str, Any], where: str) -> tuple["LayoutSpec", dict[str, float]]:
+    """The layout (with its parameter table) and the parameter values of a layout file."""
+    from railhunt.layout.params import parse_parameters
+    from railhunt.layout.parse import parse_layout
+    from railhunt.layout.spec import LayoutError
+
+    table = parse_parameters(data.get("parameters", {}), where)
+    layout = parse_layout(data, where)
+    unknown = sorted(layout.names() - set(table.specs))
+    if unknown:
+        raise LayoutError(f"{where}: unknown parameter(s) {', '.join(map(repr, unknown))} in "
+                          "the layout's values: add them to [parameters] or correct the "
+                          "name")  # fmt: skip
+    reserved = sorted(set(table.specs) & _RESERVED)
+    if reserved:
+        raise LayoutError(f"{where}: parameter name(s) {', '.join(map(repr, reserved))} are "
+                          "taken by the vehicle's own attributes: rename them")  # fmt: skip
+    layout = dataclasses.replace(layout, consistency=table.consistency,
+                                 parameters=tuple(table.specs.values()),
+                                 sources=tuple(table.sources.items()))  # fmt: skip
+    return layout, table.values
+
+
+_RESERVED = frozenset({"name", "description", "contact", "layout", "values", "v_u",
+                       "gravity", "blowoff_force", "length",
+                       "assembly", "parameters", "source", "replace", "derived", "as_dict",
+                       "to_toml", "shipped", "load", "from_toml", "paper2019",
+                       "parameter_table"})  # fmt: skip
 
 
 @functools.cache
@@ -193,11 +240,12 @@ def _vehicle_from_data(
 
 
 def _build_vehicle(data: dict[str, Any], where: str, default_name: str, depth: int) -> Vehicle:
-    extra = set(data) - {"vehicle", "parameters", "contact"}
+    extra = set(data) - {"vehicle", "parameters", "contact"} - _LAYOUT_SECTIONS
     if extra:
         raise VehicleFileError(
             f"{where}: unknown top-level key(s) {sorted(extra)}; "
-            "expected only [vehicle], [parameters] and [contact]"
+            "expected only [vehicle], [parameters], [contact], [[body]], [[element]] and "
+            "[wheel_rail]"
         )
     contact = _read_contact(data.get("contact"), where)
     meta = data.get("vehicle", {})
@@ -209,13 +257,26 @@ def _build_vehicle(data: dict[str, Any], where: str, default_name: str, depth: i
             f"{where}: unknown key(s) {sorted(bad)} in [vehicle]; "
             f"allowed: {', '.join(sorted(_VEHICLE_KEYS))}"
         )
-    for key in ("name", "description", "base"):
+    for key in ("name", "description", "base", "source"):
         if key in meta and not isinstance(meta[key], str):
             raise VehicleFileError(f"{where}: [vehicle] {key} must be a string")
 
     table = data.get("parameters", {})
     if not isinstance(table, dict):
         raise VehicleFileError(f"{where}: 'parameters' must be a table")
+    if _LAYOUT_SECTIONS & set(data):
+        if "base" in meta:
+            raise VehicleFileError(f"{where}: a file with [[body]], [[element]] or "
+                                   "[wheel_rail] describes its own layout: remove "
+                                   "[vehicle] base (base is for changing the parameters of "
+                                   "another vehicle)")  # fmt: skip
+        layout, values = _layout_from_data(data, where)
+        return Vehicle(name=meta.get("name", default_name),
+                       description=meta.get("description", ""), contact=contact,
+                       layout=layout, values=values)  # fmt: skip
+    base_name = meta.get("base")
+    if base_name is not None and base_name != "paper2019" and depth == 0:
+        return _from_base(data, meta, table, contact, where, default_name)
 
     given: dict[str, float] = {}
     stated: dict[str, float] = {}
@@ -266,8 +327,37 @@ def _build_vehicle(data: dict[str, Any], where: str, default_name: str, depth: i
         name=meta.get("name", default_name),
         description=meta.get("description", ""),
         contact=contact,
-        **values,
+        layout=paper_layout(),
+        values=values,
     )
+
+
+def _from_base(data: dict[str, Any], meta: dict[str, Any], table: dict[str, Any],
+               contact: ContactSpec | None, where: str, default_name: str) -> Vehicle:  # fmt: skip
+    """A file that changes the parameters of a shipped vehicle or of another file."""
+    base_name = meta["base"]
+    if base_name in shipped_vehicles():
+        base = load_shipped(base_name)
+    else:
+        path = Path(base_name)
+        if not path.is_absolute():
+            path = Path(where).parent / path
+        if not path.is_file():
+            raise VehicleFileError(f"{where}: base = {base_name!r} is neither a shipped vehicle "
+                                   f"({', '.join(shipped_vehicles())}) nor an existing "
+                                   "file")  # fmt: skip
+        base = load_vehicle(path)
+    specs = base.layout.specs
+    changes: dict[str, float] = {}
+    for name, entry in table.items():
+        if name not in specs:
+            raise UnknownParameterError(name, entry, known=tuple(specs))
+        spec = specs[name]
+        changes[name] = _read_entry(name, entry, spec.unit, spec.meaning)
+    return base.replace(name=meta.get("name", default_name),
+                        description=meta.get("description", base.description),
+                        contact=contact if contact is not None else base.contact,
+                        **changes)  # fmt: skip
 
 
 def _read_contact(table: object, where: str) -> ContactSpec | None:
@@ -301,7 +391,7 @@ def _read_contact(table: object, where: str) -> ContactSpec | None:
 def _read_entry(name: str, entry: object, unit: str, meaning: str) -> float:
     """Value of a short-form or table-form entry, with the unit check of the table form."""
     if isinstance(entry, dict):
-        bad = set(entry) - _TABLE_KEYS
+        bad = set(entry) - _TABLE_KEYS - _RULE_KEYS
         if bad:
             raise ParameterError(
                 name,

@@ -46,6 +46,7 @@ __all__ = [
     "derived_values",
     "missing_parameters",
     "validate_all",
+    "validate_with",
     "validate_value",
 ]
 
@@ -266,20 +267,22 @@ _CONSISTENCY = (
 # --------------------------------------------------------------------------- validation
 
 
-def suggest(name: str) -> tuple[str, ...]:
+def suggest(name: str, known_names: object = None) -> tuple[str, ...]:
     """Known names close to a misspelt one, best first (same name in other case first).
 
     Parameters
     ----------
     name : str
         An unknown name.
+    known_names : iterable of str, optional
+        The names to choose from (default: the paper's parameters and derived names).
 
     Returns
     -------
     tuple of str
         Up to a few parameter or derived names; may be empty.
     """
-    known = [*PARAMETERS, *DERIVED]
+    known = [*PARAMETERS, *DERIVED] if known_names is None else list(known_names)
     exact_case = [k for k in known if k.lower() == name.lower()]
     close = difflib.get_close_matches(name, known, n=3, cutoff=0.6)
     return tuple(dict.fromkeys([*exact_case, *close]))
@@ -386,4 +389,54 @@ def validate_all(params: Mapping[str, object]) -> dict[str, float]:
             spec = PARAMETERS[name]
             rule = text.format(**{other: fmt_value(out[other])})
             raise ParameterError(name, given[name], rule, spec.unit, meaning=spec.meaning)
+    return out
+
+
+def validate_with(params: Mapping[str, object], specs: Mapping[str, ParameterSpec],
+                  consistency: tuple = ()) -> dict[str, float]:  # fmt: skip
+    """Check a complete parameter set against a vehicle's own parameter table.
+
+    Like :func:`validate_all`, for any layout: ``specs`` are the layout's parameters and
+    ``consistency`` its rules between them (``parameter > other``).
+
+    Parameters
+    ----------
+    params : Mapping[str, object]
+        SI values by name (a parameter with a default may be left out).
+    specs : Mapping[str, ParameterSpec]
+        The layout's parameters, in order.
+    consistency : tuple of ConsistencyRule
+        ``(parameter, other, reason)`` rules.
+
+    Returns
+    -------
+    dict[str, float]
+        The values as floats, in ``specs`` order.
+    """
+    known = tuple(specs)
+    for name in params:
+        if name not in specs:
+            if name in DERIVED:
+                raise DerivedParameterError(name, params[name])
+            raise UnknownParameterError(name, params[name], known=known)
+    missing = tuple(n for n, s in specs.items() if n not in params and s.default is None)
+    if missing:
+        raise MissingParametersError(missing)
+    out: dict[str, float] = {}
+    for name, spec in specs.items():
+        value = params[name] if name in params else spec.default
+        x = as_float(name, value, spec.unit or None, spec.meaning)
+        if not spec.rule.accepts(x):
+            raise ParameterError(name, value, str(spec.rule), spec.unit or None,
+                                 meaning=spec.meaning)  # fmt: skip
+        out[name] = x
+    for rule in consistency:
+        if not out[rule.parameter] > out[rule.other]:
+            spec = specs[rule.parameter]
+            unit = f" {spec.unit}" if spec.unit and spec.unit != "1" else ""
+            text = f"> {rule.other} = {fmt_value(out[rule.other])}{unit}"
+            if rule.reason:
+                text += f" ({rule.reason})"
+            given = params.get(rule.parameter, spec.default)
+            raise ParameterError(rule.parameter, given, text, spec.unit, meaning=spec.meaning)
     return out

@@ -99,14 +99,14 @@ def curve_command(radius: float, cant_mm: float | None, speed: float, transition
         click.echo(f"png: {png_file} (curve entry from {entry['start_m']:g} m, "
                    f"{entry['duration_s']:.2f} s: {entry['status']}; peak yaw damper force "
                    f"{entry['peak_damper_force_N'] * 1e-3:.2f} kN, blow-off force F_u "
-                   f"{vehicle.F_u * 1e-3:g} kN; peak Y/Q of the leading wheelset "
+                   f"{vehicle.blowoff_force * 1e-3:g} kN; peak Y/Q of the leading wheelset "
                    f"{entry['peak_derailment_quotient_w1']:.3f})")  # fmt: skip
 
 
 def _balance_kmh(curve: Any, vehicle: Any) -> float:
     from railhunt.units import ms_to_kmh
 
-    return ms_to_kmh(curve.balance_speed(g=vehicle.g))
+    return ms_to_kmh(curve.balance_speed(g=vehicle.gravity))
 
 
 def _curve_entry(vehicle: Any, speed: float, curve: Any, png_file: Path) -> dict[str, Any]:
@@ -117,7 +117,7 @@ def _curve_entry(vehicle: Any, speed: float, curve: Any, png_file: Path) -> dict
     from railhunt.plots import plot_curve_entry
     from railhunt.units import kmh_to_ms
 
-    length = curve.start + curve.transition + 2 * (vehicle.l + vehicle.l1) + ENTRY_SETTLE
+    length = curve.start + curve.transition + vehicle.length + ENTRY_SETTLE
     duration = length / kmh_to_ms(speed)
     from railhunt import Model
     from railhunt.simulation import auto_step
@@ -130,7 +130,8 @@ def _curve_entry(vehicle: Any, speed: float, curve: Any, png_file: Path) -> dict
         run = simulate(vehicle, speed, duration=duration, curve=curve)
     with spinner("plotting ..."), user_input("cannot write --png: "):
         plot_curve_entry(run, vehicle, png_file, curve=curve)
-    forces = np.abs(np.column_stack([run[f"F_d{k}"] for k in range(1, 5)]))
+    forces = np.abs(np.column_stack([run[f"F_{d}"] for d in run.layout.dampers]
+                                    or [np.zeros(run.t.size)]))  # fmt: skip
     yq = np.abs(np.column_stack([run["YQ_w1L"], run["YQ_w1R"]]))
     return {"start_m": curve.start, "transition_m": curve.transition, "duration_s": duration,
             "status": run.status, "peak_damper_force_N": float(forces.max()),
@@ -160,11 +161,15 @@ def _print_state(state: Any, vehicle: Any, curve: Any) -> None:
     out.print(f"unbalanced acceleration: {state.unbalanced_acceleration:.3f} m/s^2, cant "
               f"deficiency {state.cant_deficiency * 1e3:.1f} mm (balance speed "
               f"{_balance_kmh(curve, vehicle):.1f} km/h)")  # fmt: skip
-    bogies = ", ".join(f"{y * 1e3:.2f}" for y in state.bogie_y)
+    bogies = ", ".join(f"{y * 1e3:.2f}" for y in state.bogie_y) or "(none)"
     out.print(f"offsets relative to the track: car body {state.car_body_y * 1e3:.2f} mm, "
               f"bogies {bogies} mm")  # fmt: skip
     stops = ", ".join(f"{f * 1e-3:.2f}" for f in state.bump_stop_force)
-    out.print(f"secondary lateral bump stops: {stops} kN (free play {vehicle.y_bs * 1e3:g} mm)")
+    gaps = ", ".join(sorted({f"{g * 1e3:g}" for g in vehicle.assembly.stop[:, 0]}))
+    if stops:
+        what = ("secondary lateral bump stops" if (vehicle.assembly.stop_track < 0).all()
+                else "stops and flange contacts")  # fmt: skip
+        out.print(f"{what}: {stops} kN (free play {gaps} mm)")
     verdict = "[green]stable[/green]" if state.stable else "[red]unstable[/red]"
     out.print(f"stability of this state: {verdict}, least damping ratio "
               f"{state.least_damping_ratio:.4f}; hunting mode "
@@ -185,10 +190,12 @@ def print_run_in_curve(run: Any, vehicle: Any, curve: Any) -> None:
              "not reached: the run ended before, give a longer --duration")  # fmt: skip
     click.echo(f"curve:      {describe_curve(curve)}; entry from {curve.start:g} m, constant "
                f"curve from {full:g} m ({where})")  # fmt: skip
-    forces = np.abs(np.column_stack([run[f"F_d{k}"] for k in range(1, 5)]))
-    names = [f"w{j}{side}" for j in range(1, 5) for side in "LR"]
+    forces = np.abs(np.column_stack([run[f"F_{d}"] for d in run.layout.dampers]
+                                    or [np.zeros(run.t.size)]))  # fmt: skip
+    names = [f"{b.tag}{side}" for b in run.layout.bodies if b.is_wheelset for side in "LR"]
     yq = np.abs(np.column_stack([run[f"YQ_{n}"] for n in names]))
     k = int(np.argmax(yq.max(axis=0)))
     click.echo(f"in curve:   y_w1 at the end {run['y_w1'][-1] * 1e3:.3f} mm relative to the "
                f"track; peak yaw damper force {forces.max() * 1e-3:.2f} kN (F_u "
-               f"{vehicle.F_u * 1e-3:g} kN); peak |Y/Q| {yq[:, k].max():.3f} ({names[k]})")
+               f"{vehicle.blowoff_force * 1e-3:g} kN); peak |Y/Q| {yq[:, k].max():.3f} "
+               f"({names[k]})")  # fmt: skip
