@@ -133,6 +133,23 @@ def test_an_example_page_without_a_table_or_figure_is_a_warning() -> None:
     assert blocks == [] and examples_hook.missing_outputs(figures, blocks) is not None
 
 
+def test_the_build_warns_on_an_example_page_without_outputs(
+        monkeypatch: pytest.MonkeyPatch, caplog: pytest.LogCaptureFixture) -> None:
+    from mkdocs.config import load_config
+    from mkdocs.structure.files import Files
+
+    # Every example "executed" without a single output: each page is a warning (strict: fails).
+    monkeypatch.setattr(examples_hook.notebooks, "executed",
+                        lambda path: _fake_executed([]))  # fmt: skip
+    config = load_config(str(ROOT / "mkdocs.yml"))
+    config.plugins._current_plugin = None  # as outside a plugin event of a build
+    files = examples_hook.on_files(Files([]), config)
+    assert len(files) == 3 * len(examples_hook.example_paths()) + 1  # page, .py, .ipynb; index
+    warned = [r.getMessage() for r in caplog.records if r.levelname == "WARNING"]
+    for path in examples_hook.example_paths():
+        assert any(f"examples/{path.stem}.md shows no output" in w for w in warned), warned
+
+
 def test_the_math_renderer_ships_with_the_site() -> None:
     config = _config()
     arithmatex = [e for e in config["markdown_extensions"]

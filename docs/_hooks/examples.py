@@ -26,6 +26,7 @@ from pathlib import Path
 from typing import Any
 
 import jupytext
+import nbformat
 from mkdocs.structure.files import File, Files
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -212,9 +213,8 @@ def on_files(files: Files, config: Any) -> Files:
         files.append(File.generated(config, f"examples/{path.name}",
                                     content=path.read_text(encoding="utf-8")))  # fmt: skip
         if nb is not None:
-            executed = notebooks.build_dir() / f"{path.stem}.ipynb"
             files.append(File.generated(config, f"examples/{path.stem}.ipynb",
-                                        content=executed.read_bytes()))  # fmt: skip
+                                        content=nbformat.writes(nb)))  # fmt: skip
     files.append(File.generated(config, "examples/index.md", content=index()))
     return files
 
