@@ -227,6 +227,16 @@ def test_every_layouts_internal_forces_sum_to_zero(name, vehicle):
             np.testing.assert_allclose(matrix @ u, 0.0, atol=1e-9 * max(np.abs(matrix).max(), 1))
 
 
+@pytest.mark.parametrize(("name", "vehicle"), LAYOUTS, ids=[n for n, _ in LAYOUTS])
+def test_every_layout_writes_a_file_that_loads_back_to_the_same_numbers(tmp_path, name,
+                                                                        vehicle):  # fmt: skip
+    back = load_vehicle(vehicle.to_toml(tmp_path / f"{name}.toml"))
+    assert back.as_dict() == vehicle.as_dict() and back.layout == vehicle.layout
+    a, b = Model(back).system(), Model(vehicle).system()
+    for field in a._fields:
+        np.testing.assert_array_equal(getattr(a, field), getattr(b, field), err_msg=field)
+
+
 def test_fixed_body_of_the_cooperrider_bogie_is_an_infinitely_heavy_one():
     from railhunt.analysis.linear import linear_critical_speed
 
@@ -422,3 +432,16 @@ def test_expression_difference_cancels_shared_terms():
     for bad in ("os.system", "a[0]", "'x'", "lambda: 1", "a if b else c", "a < b", "f(a)"):
         with pytest.raises(ExpressionError):
             Expression(bad)
+
+
+def test_study_design_on_a_layouts_own_parameters():
+    """Sweeps and ties check names and values against the vehicle's own table."""
+    from railhunt.studies.design import build_design
+
+    v = Vehicle.shipped("cooperrider_bogie")
+    points = build_design(v, {"k4": [1e5, 2e5]}, ties={"k5": "k4"})
+    assert [p.values for p in points] == [{"k4": 1e5, "k5": 1e5}, {"k4": 2e5, "k5": 2e5}]
+    with pytest.raises(ValueError, match="did you mean 'k4'"):
+        build_design(v, {"k44": [1.0]})
+    with pytest.raises(ValueError, match="unknown vehicle parameter 'C_d1'"):
+        build_design(v, {"C_d1": [1.0]})

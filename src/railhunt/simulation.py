@@ -269,6 +269,15 @@ class OutputTooLargeError(ValueError):
 #: Bytes per stored output row: the time, 38 states, 4 damper velocities, 32 derived
 #: channels, and the working arrays the derived channels are computed in.
 ROW_BYTES = 8 * (1 + N_STATE + N_DAMPER + 32 + 24)
+
+
+def row_bytes(layout: StateLayout = LAYOUT) -> int:
+    """:data:`ROW_BYTES` of a layout: the time, its states, its damper velocities, the
+    derived channels (7 per wheelset, 2 per bogie frame) and their working arrays."""
+    n_ws = len(layout.wheelsets)
+    n_frames = sum(1 for b in layout.bodies if not b.is_wheelset and b.tag.startswith("t"))
+    derived = 7 * n_ws + 2 * n_frames
+    return 8 * (1 + layout.n_state + layout.n_damper + derived + 5 * n_ws + 2 * n_frames)
 #: Largest share of the available memory a run's histories may take.
 MEMORY_SHARE = 0.5
 
@@ -301,8 +310,9 @@ def memory_available() -> float | None:
 
 
 def check_output_size(duration: float, dt: float, output_dt: float | None,
-                      method: str) -> None:  # fmt: skip
-    """Refuse a run whose histories would not fit in memory, before it allocates them.
+                      method: str, layout: StateLayout = LAYOUT) -> None:  # fmt: skip
+    """Refuse a run whose histories would not fit in memory, before it allocates them
+    (``layout``: the vehicle's states, default the paper's vehicle).
 
     Raises
     ------
@@ -311,12 +321,13 @@ def check_output_size(duration: float, dt: float, output_dt: float | None,
     """
     available = memory_available()
     rows = output_rows(duration, dt, output_dt, method)
-    nbytes = float(rows) * ROW_BYTES
+    per_row = row_bytes(layout)
+    nbytes = float(rows) * per_row
     if available is None or nbytes <= MEMORY_SHARE * available:
         return
     fits = None
     for candidate in (k * 10.0**e for e in range(-3, 4) for k in (1.0, 2.0, 5.0)):
-        if candidate >= dt and output_rows(duration, dt, candidate, method) * ROW_BYTES <= \
+        if candidate >= dt and output_rows(duration, dt, candidate, method) * per_row <= \
                 0.5 * MEMORY_SHARE * available:  # fmt: skip
             fits = candidate
             break
@@ -444,7 +455,7 @@ def simulate(
     x_init = _initial_state(model, excitation, x0)
     if dt is None:
         dt = auto_step(model, speed)
-    check_output_size(duration, dt, output_dt, method)
+    check_output_size(duration, dt, output_dt, method, model.layout)
     route = None if curve is None else curve.route()
     t, x, code, stats = integrate_model(
         model, speed, duration, x_init, excitation=excitation, method=method, dt=dt,

@@ -82,27 +82,27 @@ def equilibrium(
     """
     v, system = model.args(speed, route=route)
     layout = model.layout
-    _UNKNOWNS, _EQUATIONS, _EQ_SCALE = _equilibrium_slots(layout)  # noqa: N806
+    unknowns, equations, eq_scale = _equilibrium_slots(layout)
     x = np.zeros(layout.n_state) if x0 is None else np.array(x0, dtype=np.float64)
     x[layout.rate0:layout.force0] = 0.0
     out = np.empty(layout.n_state)
 
     def state_of(z: np.ndarray) -> np.ndarray:
         state = x.copy()
-        state[_UNKNOWNS] = z
+        state[unknowns] = z
         return state
 
     def residual(z: np.ndarray) -> np.ndarray:
         rhs(0.0, state_of(z), v, system, out)
-        return out[_EQUATIONS] / _EQ_SCALE
+        return out[equations] / eq_scale
 
     def jacobian(z: np.ndarray, r: np.ndarray) -> np.ndarray:
         jac = model.jacobian(speed, state_of(z), route=route)
-        return jac[np.ix_(_EQUATIONS, _UNKNOWNS)] / _EQ_SCALE[:, None]
+        return jac[np.ix_(equations, unknowns)] / eq_scale[:, None]
 
     # Up to 12 halvings: from the centred state a tight curve's first steps overshoot the
     # flange (the contact angle steepens sharply there).
-    z, norm, iterations, converged, _ = newton(residual, jacobian, x[_UNKNOWNS], tol=tol,
+    z, norm, iterations, converged, _ = newton(residual, jacobian, x[unknowns], tol=tol,
                                                max_iter=max_iter, halvings=12)  # fmt: skip
     if converged:
         return state_of(z), norm, iterations

@@ -278,8 +278,11 @@ def _element_row(el: ElementSpec, bodies: dict[str, BodySpec],
     return row_b - row_a
 
 
+_Supports = dict[str, list[tuple[ElementSpec, str, float]]]
+
+
 def _supports(spec: LayoutSpec, props: dict[str, dict[str, float]],
-              law_values: list[dict[str, float]]) -> dict[str, list[tuple[ElementSpec, str, float]]]:  # noqa: E501  # fmt: skip
+              law_values: list[dict[str, float]]) -> _Supports:  # fmt: skip
     """For each body, the vertical springs that carry it: (element, body below, k)."""
     out: dict[str, list[tuple[ElementSpec, str, float]]] = {b.name: [] for b in spec.bodies}
     for el, law in zip(spec.elements, law_values, strict=True):

@@ -49,6 +49,7 @@ CONTACTS: dict[str, tuple[str, ...]] = {
 #: Keys every wheelset needs (after the common table and its own are merged).
 WHEEL_RAIL_REQUIRED = ("half_gauge", "radius", "f11", "f22", "f23", "f33", "mu")
 _TAG_PREFIX = {"car": "c", "frame": "t", "wheelset": "w"}
+_COORDINATE_OF = {"mass": "y", "yaw_inertia": "psi", "roll_inertia": "phi"}
 
 
 def _expr(value: object, where: str) -> Expression:
@@ -148,7 +149,7 @@ def _bodies(table: object, where: str) -> list[BodySpec]:
                 values[key] = _expr(entry[key], f"{label}: {key}")
             elif needed:
                 raise LayoutError(f"{label}: needs {key} (it has coordinate "
-                                  f"{ {'mass': 'y', 'yaw_inertia': 'psi', 'roll_inertia': 'phi'}[key]})")  # noqa: E501  # fmt: skip
+                                  f"{_COORDINATE_OF[key]})")  # fmt: skip
             else:
                 values[key] = None
         for key in ("x", "height"):

@@ -32,7 +32,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from railhunt.vehicle import PARAMETERS, UnknownParameterError, Vehicle, validate_value
+from railhunt.vehicle import (
+    DERIVED,
+    PARAMETERS,
+    DerivedParameterError,
+    ParameterError,
+    ParameterSpec,
+    UnknownParameterError,
+    Vehicle,
+    validate_value,
+)
+from railhunt.vehicle.parameters import as_float
 
 DESIGNS = ("lines", "grid", "random", "lhs")
 #: Yaw-damper parameters: the paper computes their hunting frequency at 300 km/h.
@@ -61,7 +71,32 @@ class Point:
     values: dict[str, float]
 
 
-def parse_ties(ties: Mapping[str, object] | None) -> dict[str, tuple[str, float]]:
+def _validate(specs: Mapping[str, ParameterSpec], name: str, value: float) -> float:
+    """``validate_value`` against a vehicle's own parameter table."""
+    if specs is PARAMETERS:
+        return validate_value(name, value)
+    if name not in specs:
+        if name in DERIVED:
+            raise DerivedParameterError(name, value)
+        raise UnknownParameterError(name, value, known=tuple(specs))
+    spec = specs[name]
+    x = as_float(name, value, spec.unit or None, spec.meaning)
+    if not spec.rule.accepts(x):
+        raise ParameterError(name, value, str(spec.rule), spec.unit or None,
+                             meaning=spec.meaning)  # fmt: skip
+    return x
+
+
+def _specs(vehicle: Vehicle | None) -> Mapping[str, ParameterSpec]:
+    """The parameter table of ``vehicle`` (the paper's :data:`PARAMETERS` for its layout)."""
+    if vehicle is None or dict(vehicle.parameters) == dict(PARAMETERS):
+        return PARAMETERS
+    return vehicle.parameters
+
+
+def parse_ties(
+    ties: Mapping[str, object] | None, specs: Mapping[str, ParameterSpec] = PARAMETERS
+) -> dict[str, tuple[str, float]]:
     """Normalise ties to ``{follower: (leader, factor)}`` and check the names.
 
     Parameters
@@ -77,8 +112,8 @@ def parse_ties(ties: Mapping[str, object] | None) -> dict[str, tuple[str, float]
     for follower, spec in (ties or {}).items():
         leader, factor = (spec, 1.0) if isinstance(spec, str) else spec  # type: ignore[misc]
         for name in (follower, leader):
-            if name not in PARAMETERS:
-                raise UnknownParameterError(name, spec)
+            if name not in specs:
+                raise UnknownParameterError(name, spec, known=tuple(specs))
         factor = float(factor)
         if not (math.isfinite(factor) and factor > 0):
             raise ValueError(f"tie {follower} = {factor!r} * {leader}: the factor must be > 0")
@@ -92,37 +127,41 @@ def parse_ties(ties: Mapping[str, object] | None) -> dict[str, tuple[str, float]
     return out
 
 
-def _check_values(name: str, values: object) -> np.ndarray:
-    if name not in PARAMETERS:
-        raise UnknownParameterError(name, values)
+def _check_values(name: str, values: object,
+                  specs: Mapping[str, ParameterSpec] = PARAMETERS) -> np.ndarray:  # fmt: skip
+    if name not in specs:
+        raise UnknownParameterError(name, values, known=tuple(specs))
     arr = np.atleast_1d(np.asarray(values, dtype=float))
     if arr.ndim != 1 or arr.size == 0:
         raise ValueError(f"{name}: the values must be a non-empty 1-D sequence, got {values!r}")
     for v in arr:
-        validate_value(name, float(v))
+        _validate(specs, name, float(v))
     return arr
 
 
-def _check_range(name: str, rng: object) -> tuple[float, float]:
-    if name not in PARAMETERS:
-        raise UnknownParameterError(name, rng)
+def _check_range(
+    name: str, rng: object, specs: Mapping[str, ParameterSpec] = PARAMETERS
+) -> tuple[float, float]:
+    if name not in specs:
+        raise UnknownParameterError(name, rng, known=tuple(specs))
     try:
         lo, hi = (float(v) for v in rng)  # type: ignore[union-attr]
     except (TypeError, ValueError):
         raise ValueError(f"{name} = {rng!r}: a random or lhs design needs a range "
                          "(low, high) in SI units") from None  # fmt: skip
-    validate_value(name, lo)
-    validate_value(name, hi)
+    _validate(specs, name, lo)
+    _validate(specs, name, hi)
     if not lo < hi:
         raise ValueError(f"{name} = ({lo:g}, {hi:g}): low must be below high")
     return lo, hi
 
 
-def _tied(values: dict[str, float], ties: dict[str, tuple[str, float]]) -> dict[str, float]:
+def _tied(values: dict[str, float], ties: dict[str, tuple[str, float]],
+          specs: Mapping[str, ParameterSpec] = PARAMETERS) -> dict[str, float]:  # fmt: skip
     out = dict(values)
     for follower, (leader, factor) in ties.items():
         if leader in out:
-            out[follower] = validate_value(follower, factor * out[leader])
+            out[follower] = _validate(specs, follower, factor * out[leader])
     return out
 
 
@@ -161,7 +200,8 @@ def build_design(
         raise ValueError(f"design = {design!r} is invalid: must be one of {', '.join(DESIGNS)}")
     if not parameters:
         raise ValueError("parameters is empty: give at least one parameter to vary")
-    tie_map = parse_ties(ties)
+    specs = _specs(vehicle)
+    tie_map = parse_ties(ties, specs)
     for follower in tie_map:
         if follower in parameters:
             raise ValueError(f"{follower} is both varied and tied to {tie_map[follower][0]}: "
@@ -176,10 +216,10 @@ def build_design(
 
     def add(line: str, values: dict[str, float]) -> None:
         plain = {k: float(v) for k, v in values.items()}  # no numpy scalars in the files
-        points.append(Point(len(points), line, _tied(plain, tie_map)))
+        points.append(Point(len(points), line, _tied(plain, tie_map, specs)))
 
     if design in ("lines", "grid"):
-        arrays = {name: _check_values(name, parameters[name]) for name in names}
+        arrays = {name: _check_values(name, parameters[name], specs) for name in names}
         if design == "lines":
             for name in names:
                 for v in arrays[name]:
@@ -191,7 +231,7 @@ def build_design(
                 add("grid", {n: float(v) for n, v in zip(names, combo, strict=True)})
         return points
 
-    ranges = {name: _check_range(name, parameters[name]) for name in names}
+    ranges = {name: _check_range(name, parameters[name], specs) for name in names}
     if samples is None or isinstance(samples, bool) or int(samples) != samples or samples < 1:
         raise ValueError(f"samples = {samples!r} is invalid: a {design} design needs an "
                          "integer number of points >= 1")  # fmt: skip

@@ -262,7 +262,7 @@ def sweep(
     if excitation is None:
         excitation = SingleDefect()
     check_excitation(excitation, (SingleDefect, SampledTrack))
-    tie_map = parse_ties(ties)
+    tie_map = parse_ties(ties, vehicle.parameters)
     points = build_design(vehicle, parameters, design, samples, seed, ties)
     for p in points:  # every combination must make a valid vehicle, before any work starts
         vehicle.replace(**p.values)

@@ -1,8 +1,14 @@
-"""Vehicle parameters: the validated, immutable parameter set of the 17-DOF vehicle model.
+"""Vehicles: a layout (bodies, force elements, wheel/rail data) and its validated parameters.
 Rooms: parameters (the table, validation), rules, errors, contact, core (Vehicle), files, docs.
 
-A :class:`Vehicle` holds one SI float per model parameter (53 of them, listed in
-:data:`PARAMETERS`) plus a name and a description.  Every way of building a vehicle
+Every vehicle is a layout file (:mod:`railhunt.layout`; the format is in docs/model.md,
+"Vehicle layouts"): its ``[parameters]`` are the vehicle's named values, each with unit,
+meaning, source and rule, and ``vehicle.NAME``, :meth:`Vehicle.replace`, ``--set`` and the
+studies act on them. The paper's vehicle is ``data/vehicles/paper2019.toml``; its
+parameter table is :data:`PARAMETERS`, described below.
+
+A :class:`Vehicle` of the paper's layout holds one SI float per model parameter (56 of
+them, listed in :data:`PARAMETERS`) plus a name and a description.  Every way of building a vehicle
 (the constructor, :meth:`Vehicle.replace`, :func:`load_vehicle`) goes through the same
 checks (:func:`validate_value`, :func:`validate_all`), so an invalid vehicle cannot exist.
 Each parameter is declared once, as a line of the table in

@@ -275,7 +275,10 @@ def _build_vehicle(data: dict[str, Any], where: str, default_name: str, depth: i
                        description=meta.get("description", ""), contact=contact,
                        layout=layout, values=values)  # fmt: skip
     base_name = meta.get("base")
-    if base_name is not None and base_name != "paper2019" and depth == 0:
+    if base_name is not None and depth == 0 and not (
+            base_name in shipped_vehicles() and load_shipped(base_name).layout == paper_layout()):
+        # Another layout (or a file): its own parameter table. A vehicle of the paper's
+        # layout takes the path below, as before (derived cross-checks included).
         return _from_base(data, meta, table, contact, where, default_name)
 
     given: dict[str, float] = {}

@@ -18,6 +18,7 @@ from railhunt.cli.commands.simulate import simulate_command
 from railhunt.cli.commands.spectrogram import spectrogram_command
 from railhunt.cli.commands.stability_map import stability_map_command
 from railhunt.cli.commands.sweep import sweep_command
+from railhunt.cli.commands.vehicles import vehicle_command, vehicles_command
 
 __all__ = ["COMMANDS"]
 
@@ -30,6 +31,8 @@ COMMANDS = (
     eigen_command,
     critical_speed_command,
     parameters_command,
+    vehicles_command,
+    vehicle_command,
     bifurcation_command,
     frequency_command,
     contact_command,

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import click
@@ -29,6 +30,8 @@ from railhunt.cli.rules import command
 @file_option("--png", "png_file", "Plot the root locus (eigenvalues coloured by speed, hunting "
              "mode highlighted) and the hunting damping ratio vs speed.")  # fmt: skip
 @file_option("--csv", "csv_file", "Write the hunting-mode table (one row per speed).")
+@file_option("--mode-png", "mode_png_file", "Draw the hunting mode's shape at the Hopf point "
+             "(plan view: each body's lateral and yaw motion over a period), for any layout.")
 @overwrite_option
 @vehicle_options
 def eigen_command(
@@ -37,6 +40,7 @@ def eigen_command(
     step_kmh: float,
     png_file: Path | None,
     csv_file: Path | None,
+    mode_png_file: Path | None,
     overwrite: bool,
     vehicle_file: Path | None,
     sets: dict[str, float],
@@ -52,7 +56,7 @@ def eigen_command(
     tiny disturbance grows. Prints a table of hunting frequency (Hz) and
     damping ratio (%) vs speed (km/h) and the linear critical speed.
     """
-    check_outputs(overwrite=overwrite, csv=csv_file, png=png_file)
+    check_outputs(overwrite=overwrite, csv=csv_file, png=png_file, mode_png=mode_png_file)
     n = speed_count(from_kmh, to_kmh, step_kmh, 5000)
     vehicle = build_vehicle(vehicle_file, sets)
 
@@ -106,3 +110,11 @@ def eigen_command(
         with spinner("plotting ..."), user_input("cannot write --png: "):
             plot_root_locus(res, png_file, linear=linear)
         click.echo(f"png: {png_file}")
+    if mode_png_file is not None:
+        from railhunt.plots.layout import plot_hunting_mode
+
+        if not math.isfinite(linear.speed_kmh):
+            raise click.UsageError("--mode-png: no Hopf point between 20 and 1000 km/h")
+        with spinner("plotting the mode ..."), user_input("cannot write --mode-png: "):
+            plot_hunting_mode(vehicle, mode_png_file, linear.speed_kmh)
+        click.echo(f"mode png: {mode_png_file}")

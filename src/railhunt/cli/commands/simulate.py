@@ -255,7 +255,7 @@ def _check_work(vehicle: Any, speed: float, duration: float, method: str, dt: fl
     with user_input("--set/--vehicle: "):
         step = dt if dt is not None else auto_step(Model(vehicle), kmh_to_ms(speed))
     try:
-        check_output_size(duration, step, output_dt, method)
+        check_output_size(duration, step, output_dt, method, vehicle.assembly.layout)
     except OutputTooLargeError as exc:
         every = f"every {output_dt:g} s" if output_dt is not None else f"every {step:g} s step"
         hint = (f"--output-dt {exc.output_dt:g}" if exc.output_dt else "--output-dt S")
