@@ -131,6 +131,13 @@ def test_an_example_page_without_a_table_or_figure_is_a_warning() -> None:
     assert examples_hook.missing_outputs(figures, blocks) is not None
     _, blocks, figures = examples_hook.page(path, _fake_executed([]))
     assert blocks == [] and examples_hook.missing_outputs(figures, blocks) is not None
+    figure_as_text = _fake_executed([
+        {"output_type": "execute_result", "execution_count": 1, "metadata": {},
+         "data": {"text/plain": "<Figure size 800x650 with 2 Axes>"}},
+        {"output_type": "execute_result", "execution_count": 2, "metadata": {},
+         "data": {"text/html": "<table></table>", "text/plain": "t"}}])
+    _, blocks, figures = examples_hook.page(path, figure_as_text)
+    assert "<Figure size 800x650" in examples_hook.missing_outputs(figures, blocks)
 
 
 def test_the_build_warns_on_an_example_page_without_outputs(

@@ -141,8 +141,16 @@ def page(path: Path, nb: Any = None) -> tuple[str, list[str], dict[str, bytes]]:
     return "\n\n".join(parts) + "\n", blocks, figures
 
 
+_FIGURE_AS_TEXT = re.compile(r"&lt;(?:Figure|matplotlib\.figure\.Figure) size [^&]*&gt;")
+
+
 def missing_outputs(figures: dict[str, bytes], blocks: list[str]) -> str | None:
-    """What an example page lacks (None: it shows at least one table or figure)."""
+    """What an example page lacks (None: it shows at least one table or figure, and no
+    figure as the text ``<Figure size ...>``)."""
+    as_text = [m.group(0) for block in blocks for m in _FIGURE_AS_TEXT.finditer(block)]
+    if as_text:
+        return (f"shows a figure as text, {html.unescape(as_text[0])!r}: its cell's output "
+                "has no image")
     if figures or any("<table" in block for block in blocks):
         return None
     return "shows no output: not a single table or figure (did the notebook run?)"

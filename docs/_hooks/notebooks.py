@@ -2,8 +2,9 @@
 
 Each ``examples/NN_name.py`` (jupytext percent format) is converted to a notebook and run
 cell by cell in a fresh Jupyter kernel (nbclient), with ``examples/`` as the working
-directory, as ``jupyter lab`` would run it; figures are captured as PNG (the kernel gets
-matplotlib's inline backend even when ``MPLBACKEND=Agg`` is set for everything else). The
+directory, as ``jupyter lab`` would run it; figures are captured as PNG (the kernel runs
+with ``%matplotlib inline``, also when ``MPLBACKEND=Agg`` is set for everything else, so a
+cell that returns a figure shows it, as a figure made with pyplot is shown). The
 executed notebook is written to a build folder as ``NN_name.ipynb`` together with a
 fingerprint of what its outputs depend on (the example, ``examples/data/`` and the package's
 source), the seconds it took and the files it wrote into ``examples/`` (none allowed).
@@ -54,7 +55,7 @@ def build_dir() -> Path:
 
 def _inputs(path: Path) -> list[Path]:
     src = ROOT / "src" / "railhunt"
-    files = [path, *(EXAMPLES / "data").rglob("*"), *src.rglob("*")]
+    files = [path, Path(__file__), *(EXAMPLES / "data").rglob("*"), *src.rglob("*")]
     return sorted(p for p in files if p.is_file() and "__pycache__" not in p.parts)
 
 
@@ -63,7 +64,8 @@ _PACKAGES = ("numpy", "scipy", "numba", "matplotlib", "pandas", "xarray", "dask"
 
 
 def fingerprint(path: Path) -> str:
-    """SHA-256 over the example, its data folder, the package's source and the versions."""
+    """SHA-256 over the example, its data folder, the package's source, this runner and the
+    versions of Python and the main packages."""
     digest = hashlib.sha256(sys.version.encode())
     for name in _PACKAGES:
         try:
@@ -109,6 +111,7 @@ def execute(path: Path, out_dir: Path | None = None) -> NotebookNode:
     before = _files_in(EXAMPLES)
     start = time.perf_counter()
     client = nbclient.NotebookClient(nb, timeout=CELL_TIMEOUT_S, kernel_name="python3",
+                                     extra_arguments=["--matplotlib=inline"],
                                      resources={"metadata": {"path": str(EXAMPLES)}})
     client.execute(env={**os.environ, "MPLBACKEND": _INLINE})
     seconds = time.perf_counter() - start
