@@ -445,3 +445,41 @@ def test_study_design_on_a_layouts_own_parameters():
         build_design(v, {"k44": [1.0]})
     with pytest.raises(ValueError, match="unknown vehicle parameter 'C_d1'"):
         build_design(v, {"C_d1": [1.0]})
+
+
+def test_the_crossing_of_a_stiffly_held_frame_is_hunting():
+    """The Cooperrider bogie's frame moves laterally a little more than its wheelsets in
+    the crossing mode (1.0 against 0.9): it is still the hunting instability."""
+    from railhunt.analysis.linear import linear_critical_speed
+
+    assert linear_critical_speed(Vehicle.shipped("cooperrider_bogie")).is_hunting_mode
+    assert linear_critical_speed(PAPER).is_hunting_mode
+
+
+def test_the_hopf_start_is_the_crossing_pair():
+    """A locomotive's two nearly equal bogie modes: the continuation starts from the pair
+    that crosses at the Hopf point, not from the damped one the per-speed pick prefers."""
+    from railhunt.analysis.continuation import _hopf_start
+    from railhunt.analysis.linear import linear_critical_speed
+
+    v = Vehicle.shipped("three_axle_bogie_car")
+    lc = linear_critical_speed(v, tol_kmh=1e-3)
+    _, period = _hopf_start(Model(v), lc.speed_kmh)
+    assert 1.0 / period == pytest.approx(lc.frequency_hz, rel=1e-3)
+
+
+def test_a_branch_jittering_in_speed_makes_one_fold():
+    """Folds are turns confirmed by a retreat of more than 0.5 km/h: a branch that jitters
+    in speed along a plateau (two-axle wagon, wheel against its flange) turns once; on a
+    clean branch every sign change of the speed step is a fold, as before."""
+    from railhunt.analysis.branches import _turns
+
+    jitter = np.array([404.07, 403.5, 402.67, 402.79, 401.7, 401.78, 400.85, 400.91, 399.0,
+                       397.0, 396.65, 397.04, 396.7, 397.1, 399.0, 401.0, 404.0])
+    assert _turns(jitter) == [10]
+    rng = np.random.default_rng(0)
+    for _ in range(300):
+        t = np.linspace(0, 1, int(rng.integers(5, 60)))
+        speed = 300 + 50 * np.sin(2 * np.pi * rng.uniform(0.3, 3) * t + rng.uniform(0, 6))
+        dv = np.diff(speed)
+        assert _turns(speed) == [i for i in range(1, dv.size) if dv[i - 1] * dv[i] < 0]

@@ -11,7 +11,7 @@ Every file is made by railhunt itself, so its source and licence are railhunt's 
   from the German high-speed spectrum for low disturbance (seed 7): no measured alignment
   is available here under a licence that allows shipping it.
 
-``my.toml`` and ``worn.toml`` are written by hand.
+``my.toml``, ``worn.toml`` and ``articulated_pair.toml`` are written by hand.
 """
 
 from __future__ import annotations

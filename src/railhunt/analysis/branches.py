@@ -228,6 +228,40 @@ def _none_if_nan(x: float) -> float | None:
     return None if math.isnan(x) else x
 
 
+#: A turn of a branch in speed counts as a fold once the branch has moved back this far
+#: from it (km/h), or its amplitude has changed by more than FOLD_AMPLITUDE (m): a branch
+#: that jitters in speed along a plateau of amplitude (a wheel against its flange) makes
+#: no folds of its jitter.
+FOLD_RETREAT_KMH = 0.5
+FOLD_AMPLITUDE = 5e-5
+
+
+def _turns(speed: np.ndarray, amplitude: np.ndarray | None = None,
+           retreat: float = FOLD_RETREAT_KMH) -> list[int]:  # fmt: skip
+    """Indices of the points where the branch turns back in speed, each confirmed by a
+    retreat of more than ``retreat`` km/h from it or a change of amplitude of more than
+    :data:`FOLD_AMPLITUDE` (on a clean branch: every sign change of the speed step)."""
+    amp = np.zeros(speed.size) if amplitude is None else amplitude
+    turns: list[int] = []
+    direction = 0.0
+    extreme = 0
+    for k in range(1, speed.size):
+        step = speed[k] - speed[extreme]
+        if direction == 0.0:
+            if step != 0.0:
+                direction, extreme = math.copysign(1.0, step), k
+            continue
+        if step * direction > 0:
+            extreme = k
+        elif abs(step) > retreat or abs(amp[k] - amp[extreme]) > FOLD_AMPLITUDE:
+            if 1 <= extreme <= speed.size - 2:
+                turns.append(extreme)
+            direction, extreme = -direction, k
+    if direction != 0.0 and 1 <= extreme <= speed.size - 2:
+        turns.append(extreme)  # the branch ends on its way back: a turn, as it always was
+    return turns
+
+
 def make_branch(orbits: list[PeriodicOrbit], origin: str,
                  hopf: tuple[float, float] | None = None) -> Branch:  # fmt: skip
     """Arrays and folds of a branch; ``hopf = (speed_kmh, period)`` prepends the Hopf point."""
@@ -248,8 +282,7 @@ def make_branch(orbits: list[PeriodicOrbit], origin: str,
     amp_a = np.array(amp)
     folds = []
     dv = np.diff(speed_a)
-    for i in range(1, dv.size):
-        if dv[i - 1] * dv[i] < 0:
+    for i in _turns(speed_a, amp_a):
             # Parabola of speed against the distance along the branch in the (speed / 10
             # km/h, amplitude / 1 mm) plane, through the three points around the turn.
             seg = np.hypot(dv[i - 1:i + 1] / 10.0, np.diff(amp_a[i - 1:i + 2]) / 1e-3)

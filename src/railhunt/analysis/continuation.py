@@ -81,6 +81,12 @@ def _hopf_start(model: Model, hopf_kmh: float,
     else:
         w, vecs = sorted_eig(path.jacobian_kmh(hopf_kmh))
     k = hunting_mode_index(w, vecs, model.half_gauge, model.layout)
+    if w[k].real < -1e-3:
+        # The pick is clearly damped here, so it is not the pair that crosses at this Hopf
+        # point (two nearly equal bogie modes of a long vehicle): start from the crossing
+        # pair itself, the oscillatory eigenvalue with the largest real part.
+        osc = np.flatnonzero(w.imag > 1e-6)
+        k = int(osc[np.argmax(w.real[osc])])
     lam = w[k]
     if lam.imag < 0:
         lam, vec = np.conj(lam), np.conj(vecs[:, k])
@@ -279,6 +285,12 @@ def bifurcation_diagram(
 
     # 1. Three small orbits with y_w1(0) fixed (natural parameter), from the eigenvector.
     seeds = (5e-5, 1e-4, 2e-4)
+    # Small orbits are small on every wheelset: where the crossing mode moves another
+    # wheelset more than y_w1 (a rear bogie of an articulated train), the seeds shrink by
+    # that ratio (the paper's vehicle: y_w1 moves most, the seeds are as they were).
+    largest = float(np.max(np.abs(shape[model.layout.wheelset_y])))
+    if largest > 1.0:
+        seeds = tuple(s / largest for s in seeds)
     small: list[tuple[np.ndarray, PeriodicOrbit, tuple]] = []
     u = shoot.pack(x_hopf + seeds[0] * shape, period0, kmh_to_ms(hopf))
     for n, eps in enumerate(seeds):

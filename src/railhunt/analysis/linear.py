@@ -19,7 +19,13 @@ import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
 from railhunt.analysis.curving import EquilibriumPath
-from railhunt.analysis.modes import eigenvalues, hunting_mode_index, mac, sorted_eig
+from railhunt.analysis.modes import (
+    eigenvalues,
+    hunting_mode_index,
+    mac,
+    moves_the_wheelsets,
+    sorted_eig,
+)
 from railhunt.curve import Curve
 from railhunt.model import Model
 from railhunt.results import Columns, ResultDisplay, Row
@@ -254,6 +260,8 @@ def linear_critical_speed(
         is_hunting = False
     else:
         kk = k if w[k].imag > 0 else int(np.argmin(np.abs(w - np.conj(w[k]))))
-        is_hunting = kk == hunting_mode_index(w, vecs, model.half_gauge, model.layout)
+        is_hunting = (kk == hunting_mode_index(w, vecs, model.half_gauge, model.layout)
+                      or moves_the_wheelsets(vecs[:model.layout.n_dof, kk], model.half_gauge,
+                                             model.layout))  # fmt: skip
     return LinearCriticalSpeed(float(speed), abs(w[k].imag) / (2 * math.pi), complex(w[k]),
                                is_hunting)  # fmt: skip

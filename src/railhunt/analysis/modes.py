@@ -53,6 +53,19 @@ def _is_wheelset_mode(q: np.ndarray, a: float, layout: StateLayout = LAYOUT) -> 
     return bool(wheel.max() >= lateral.max(initial=0.0))
 
 
+def moves_the_wheelsets(q: np.ndarray, a: float, layout: StateLayout = LAYOUT,
+                        share: float = 0.5) -> bool:  # fmt: skip
+    """True when mode shape ``q`` moves a wheelset (lateral, or yaw times ``a``) at least
+    ``share`` times as much as the body that moves most laterally: the test of whether the
+    pair crossing at a Hopf point is a hunting instability. Looser than the per-speed
+    pick (:func:`hunting_mode_index`, a wheelset must move most): a bogie frame held
+    stiffly on its wheelsets (the Cooperrider bogie: frame 1.0, wheelsets 0.9) hunts with
+    them."""
+    lateral = np.abs(q[layout.body_y])
+    wheel = np.concatenate([np.abs(q[layout.wheelset_y]), a * np.abs(q[layout.wheelset_psi])])
+    return bool(wheel.max() >= share * lateral.max(initial=0.0))
+
+
 def mac(p: np.ndarray, q: np.ndarray) -> float:
     """Modal assurance criterion of two complex mode shapes (0..1)."""
     den = np.vdot(p, p).real * np.vdot(q, q).real

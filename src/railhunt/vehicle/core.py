@@ -86,9 +86,6 @@ class Vehicle:
         for key, value in (("name", name), ("description", description), ("contact", contact),
                            ("layout", layout), ("values", checked)):  # fmt: skip
             object.__setattr__(self, key, value)
-        from railhunt.layout.assembly import assemble_layout
-
-        object.__setattr__(self, "_assembly", assemble_layout(layout, checked))
 
     # -- parameters as attributes ---------------------------------------------------------
 
@@ -234,8 +231,22 @@ class Vehicle:
 
     @property
     def assembly(self) -> "Assembly":
-        """The layout's matrices and rows for these values (built once)."""
-        return self.__dict__["_assembly"]
+        """The layout's matrices and rows for these values, built on first use (a model,
+        a file read) and kept: about a millisecond for the paper's vehicle.
+
+        Raises
+        ------
+        LayoutError
+            What the values make of the layout cannot be assembled (a non-positive mass
+            or inertia, a free mode; see :mod:`railhunt.layout.assembly`).
+        """
+        asm = self.__dict__.get("_assembly")
+        if asm is None:
+            from railhunt.layout.assembly import assemble_layout
+
+            asm = assemble_layout(self.layout, self.values)
+            object.__setattr__(self, "_assembly", asm)
+        return asm
 
     # -- views ---------------------------------------------------------------------------
 

@@ -232,7 +232,9 @@ def _vehicle_from_data(
     data: dict[str, Any], where: str, *, default_name: str, depth: int = 0
 ) -> Vehicle:
     try:
-        return _build_vehicle(data, where, default_name, depth)
+        vehicle = _build_vehicle(data, where, default_name, depth)
+        vehicle.assembly  # noqa: B018  (a file's layout is checked when it is read)
+        return vehicle
     except ParameterError as exc:
         if exc.path is None:
             exc.path = where
