@@ -62,7 +62,7 @@ def test_importing_the_kernel_loads_no_object_layer_module() -> None:
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     loaded = eval(out.stdout)  # a list literal of module names
     outside = [m for m in loaded if not m.startswith("railhunt.kernel")
-               and m not in ("railhunt", "railhunt._cache")]  # fmt: skip
+               and m not in ("railhunt", "railhunt._cache", "railhunt._version")]  # fmt: skip
     assert outside == []
 
 
@@ -110,3 +110,77 @@ def test_every_package_folder_says_what_lives_there() -> None:
     for init in SRC.rglob("__init__.py"):
         doc = ast.get_docstring(ast.parse(init.read_text(encoding="utf-8")))
         assert doc, f"{init.relative_to(SRC)} has no docstring"
+
+
+# The floors of the object layer, lowest first. A module may import modules of its own
+# floor or below; the command line is the top floor and reads the package's public names.
+_FLOORS = {"analysis": 1, "studies": 2, "plots": 2, "cli": 3}
+
+
+def _floor(module: str) -> int | None:
+    parts = module.split(".")
+    return _FLOORS.get(parts[1]) if len(parts) > 1 and parts[0] == "railhunt" else None
+
+
+def _absolute_imports(path: Path) -> list[tuple[int, str, list[str]]]:
+    """(line, module, imported names) of every import of ``path``, relative ones resolved."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    package = ["railhunt", *path.relative_to(SRC).parts[:-1]]
+    out = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            out += [(node.lineno, alias.name, []) for alias in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            base = package[: len(package) - node.level + 1] if node.level else []
+            module = ".".join([*base, node.module] if node.module else base)
+            out.append((node.lineno, module, [a.name for a in node.names]))
+    return out
+
+
+def _is_submodule(name: str) -> bool:
+    return (SRC / f"{name}.py").exists() or (SRC / name / "__init__.py").exists()
+
+
+def _upstream_imports(path: Path) -> list[str]:
+    """The imports of ``path`` that climb: the package's top level from inside it, or a
+    module on a higher floor of the object layer."""
+    rel = path.relative_to(SRC)
+    if rel.parts[0] == "cli" or rel == Path("__init__.py"):
+        return []
+    own = _FLOORS.get(rel.parts[0], 0) if len(rel.parts) > 1 else 0
+    bad = []
+    for line, module, names in _absolute_imports(path):
+        if module == "railhunt":
+            top = [n for n in names if not _is_submodule(n)] if names else ["railhunt"]
+            if top or (rel.parts[0] == "studies" and names):
+                names_ = ', '.join(names or top)
+                bad.append(f"{rel}:{line} imports the package's top level ({names_})")
+        floor = _floor(module)
+        if floor is not None and floor > own and module.split(".")[1] != rel.parts[0]:
+            bad.append(f"{rel}:{line} imports {module}, a floor above it")
+    return bad
+
+
+@pytest.mark.parametrize("path", _sources(SRC), ids=lambda p: str(p.relative_to(SRC)))
+def test_imports_run_downhill(path: Path) -> None:
+    assert _upstream_imports(path) == []
+
+
+def test_analysis_and_plots_of_one_theme_do_not_import_each_other() -> None:
+    analysis = {m for _, m, _ in _absolute_imports(SRC / "analysis" / "spectrogram.py")}
+    assert "railhunt.plots.spectrogram" not in analysis
+
+
+def test_the_downhill_check_can_fail(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    fake = tmp_path / "railhunt"
+    for folder, text in {
+        "studies": "import railhunt\nfrom railhunt import paper2019\n",
+        "analysis": "from railhunt.plots.figure import new_figure\nfrom ..cli import app\n",
+    }.items():
+        (fake / folder).mkdir(parents=True)
+        (fake / folder / "x.py").write_text(text)
+    (fake / "paper2019").mkdir()
+    (fake / "paper2019" / "__init__.py").write_text("")
+    monkeypatch.setattr(sys.modules[__name__], "SRC", fake)
+    assert len(_upstream_imports(fake / "studies" / "x.py")) == 2
+    assert len(_upstream_imports(fake / "analysis" / "x.py")) == 2

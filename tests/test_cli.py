@@ -286,7 +286,7 @@ def test_sweep_json_and_table(tmp_path):
         ([], ["NAME", "--table1"]),
         (["--table1", "--from", "1"], ["--table1", "--from"]),
         (["--table1", "K_py"], ["K_py", "Table 1"]),
-        (["--table1", "--points-per-section", "1"], ["points_per_section"]),
+        (["--table1", "--points-per-section", "1"], ["--points-per-section 1"]),
     ],
 )
 def test_sweep_input_errors(tmp_path, args, fragments):

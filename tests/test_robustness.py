@@ -139,7 +139,7 @@ def test_judge_run_tells_decay_from_hunting_apart_from_the_solver():
 
 def _profile_file(tmp_path, ys):
     path = tmp_path / "worn.txt"
-    path.write_text("# y z (mm)\n" + "".join(f"{y:g} {0.01 * y * y:g}\n" for y in ys))
+    path.write_text("# y z (mm)\n" + "".join(f"{y:g} {0.001 * y * y:g}\n" for y in ys))
     return path
 
 
@@ -153,18 +153,19 @@ def test_a_non_monotonic_profile_is_refused_naming_the_file_and_row(tmp_path):
 
 
 def test_a_falling_profile_is_monotonic(tmp_path):
-    path = _profile_file(tmp_path, [3, 2, 1, 0, -1, -2])
+    path = _profile_file(tmp_path, list(range(30, -31, -1)))
     profile = railhunt.read_profile(path, kind="wheel")
-    np.testing.assert_allclose(profile.y, np.array([-2, -1, 0, 1, 2, 3]) * 1e-3)
+    np.testing.assert_allclose(profile.y, np.arange(-30, 31) * 1e-3)
 
 
 def test_repair_sorts_with_a_warning(tmp_path):
-    path = _profile_file(tmp_path, [-3, -2, -1, 0, 1, 0.5, 2, 3])
+    more = list(range(4, 30))  # a profile of 34 points, one of them out of order
+    path = _profile_file(tmp_path, [-3, -2, -1, 0, 1, 0.5, 2, 3, *more])
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         profile = railhunt.read_profile(path, kind="wheel", repair=True)
     assert any("point 6" in str(w.message) and "sorted" in str(w.message) for w in caught)
-    np.testing.assert_allclose(profile.y * 1e3, [-3, -2, -1, 0, 0.5, 1, 2, 3])
+    np.testing.assert_allclose(profile.y * 1e3, [-3, -2, -1, 0, 0.5, 1, 2, 3, *more])
 
 
 def test_the_contact_command_names_the_profile_file(tmp_path):

@@ -144,3 +144,58 @@ def test_missing_file_and_bad_options(tmp_path):
     assert_input_error(run("spectrogram", str(path), "--channel", "acc", "--window", "0.01"),
                        "at least 8")  # fmt: skip
     assert_input_error(run("spectrogram", str(path)), "--channel")
+
+
+@pytest.mark.parametrize("unit, factor", [("ms", 1e3), ("min", 1.0 / 60.0), ("s", 1.0)])
+def test_time_column_units_are_converted_to_seconds(tmp_path, unit, factor):
+    # The same 3 Hz sine recorded with its time in ms, min or s: the same frequency.
+    t = np.arange(0.0, 20.0, 0.005)
+    path = write_csv(tmp_path / "u.csv", t * factor, np.sin(2 * np.pi * 3.0 * t),
+                     header=f"t [{unit}],acc [m/s^2]")  # fmt: skip
+    result = run("spectrogram", str(path), "--channel", "acc", "--json")
+    assert result.exit_code == 0, result.stderr
+    data = json.loads(result.stdout)
+    assert data["sampling_hz"] == pytest.approx(200.0, rel=1e-6)
+    assert [b["frequency_hz"] for b in data["bands"]] == [pytest.approx(3.0, abs=0.5)]
+
+
+@pytest.mark.parametrize("unit", ["h", "samples", "m"])
+def test_a_time_unit_other_than_seconds_is_refused(tmp_path, unit):
+    t = np.arange(0.0, 20.0, 0.005)
+    path = write_csv(tmp_path / "u.csv", t, np.sin(t), header=f"time [{unit}],acc")
+    assert_input_error(run("spectrogram", str(path), "--channel", "acc"),
+                       f"'time [{unit}]' is in '{unit}'", "expected seconds")  # fmt: skip
+
+
+def test_a_byte_order_mark_is_skipped(tmp_path):
+    t = np.arange(0.0, 10.0, 0.01)
+    path = tmp_path / "bom.csv"
+    write_csv(path, t, np.sin(2 * np.pi * 2.0 * t))
+    path.write_bytes(b"\xef\xbb\xbf" + path.read_bytes())
+    tt, _, _ = read_channel(path, "acc")
+    assert tt[1] == pytest.approx(0.01)
+
+
+@pytest.mark.parametrize("level", [0.0, 9.81])
+def test_a_constant_signal_is_no_signal(tmp_path, level):
+    # All zeros, or a constant (gravity): nothing vibrates, so no band dominates.
+    t = np.arange(0.0, 10.0, 0.01)
+    path = write_csv(tmp_path / "flat.csv", t, np.full(t.size, level))
+    result = run("spectrogram", str(path), "--channel", "acc", "--json")
+    assert result.exit_code == 0, result.stderr
+    bands = json.loads(result.stdout)["bands"]
+    assert [b["no_signal"] for b in bands] == [True]
+    assert bands[0]["frequency_hz"] is None
+    table = run("spectrogram", str(path), "--channel", "acc")
+    assert "no signal" in table.stdout and "strongest" not in table.stdout
+
+
+def test_a_silent_stretch_is_its_own_band(tmp_path):
+    t = np.arange(0.0, 30.0, 0.01)
+    y = np.where(t < 15.0, np.sin(2 * np.pi * 4.0 * t), 0.0)
+    spec = stft(t, y)
+    from railhunt.analysis.spectrogram import dominant_bands
+
+    bands = dominant_bands(spec)
+    assert not bands[0].no_signal and bands[0].frequency == pytest.approx(4.0, abs=0.5)
+    assert bands[-1].no_signal and bands[-1].start > 15.0

@@ -301,7 +301,7 @@ def test_unreachable_scheduler_leaves_no_stub(tmp_path, monkeypatch):
     def unreachable(*args, **kwargs):
         raise OSError("Timed out trying to connect to tcp://10.0.0.5:8786 after 30 s")
 
-    monkeypatch.setattr(runner_module, "run_tasks", unreachable)
+    monkeypatch.setattr(runner_module, "open_client", unreachable)
     out = tmp_path / "s.csv"
     with pytest.raises(OSError, match="Timed out"):
         sweep(VEHICLE, {"mu": [0.2]}, LINEAR, scheduler="tcp://10.0.0.5:8786", out=out)

@@ -35,7 +35,7 @@ from __future__ import annotations
 from importlib import import_module
 from typing import TYPE_CHECKING, Any
 
-__version__ = "0.1.0"
+from railhunt._version import __version__ as __version__  # noqa: E402
 
 # Before any numba function is defined: a cache folder per version of the sources (see
 # railhunt/_cache.py; numba alone would reuse code compiled from older equations).

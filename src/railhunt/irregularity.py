@@ -353,8 +353,15 @@ def load_irregularity(
         With ``spectrum = "measured"``.
     """
     path = Path(path)
-    with path.open(newline="") as fh:
-        rows = list(csv.reader(fh))
+    try:
+        with path.open(newline="", encoding="utf-8-sig") as fh:
+            rows = list(csv.reader(fh))
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"{path}: not a text CSV file (byte {exc.start} is not UTF-8 text); "
+                         "expected a header 'distance,alignment' and one row per track "
+                         "position") from None  # fmt: skip
+    except csv.Error as exc:
+        raise ValueError(f"{path}: not a CSV file ({exc})") from None
     rows = [r for r in rows if any(cell.strip() for cell in r)]
     if not rows:
         raise ValueError(f"{path}: the file is empty; expected a header 'distance,alignment'")

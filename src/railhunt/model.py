@@ -79,6 +79,9 @@ class Model:
     def __init__(
         self, vehicle: Vehicle, creep_law: str | None = None, contact: object = None
     ) -> None:
+        from railhunt.arguments import check_vehicle
+
+        check_vehicle(vehicle)
         if creep_law is not None and creep_law not in CREEP_LAWS:
             raise ValueError(
                 f"creep_law = {creep_law!r} is invalid: must be one of {sorted(CREEP_LAWS)}"

@@ -46,7 +46,7 @@ def vehicle_fingerprint(vehicle: Vehicle) -> str:
 def provenance(vehicle: Vehicle | None = None) -> dict[str, Any]:
     """The keys that trace an output: ``railhunt_version`` and, with a vehicle,
     ``vehicle`` (its name) and ``vehicle_fingerprint`` (:func:`vehicle_fingerprint`)."""
-    from railhunt import __version__
+    from railhunt._version import __version__
 
     out: dict[str, Any] = {"railhunt_version": __version__}
     if vehicle is not None:

@@ -11,6 +11,7 @@ from typing import Any
 
 import numpy as np
 
+from railhunt.arguments import check_curve
 from railhunt.channels import CHANNEL_UNITS, derived_channels
 from railhunt.curve import Curve
 from railhunt.kernel import integrators
@@ -49,7 +50,8 @@ class SimulationResult(ResultDisplay):
         Forward speed (m/s).
     status : str
         ``"ok"``, ``"derailed"`` (a wheelset's lateral displacement exceeded the limit),
-        ``"diverged"`` (non-finite state) or ``"step-failed"``.
+        ``"diverged"`` (non-finite state), ``"step-failed"`` or ``"step-limit"`` (the
+        adaptive method used up its step budget before the end: the message says so).
     message : str
         Human-readable description of how the run ended.
     damper_velocity : numpy.ndarray
@@ -230,6 +232,29 @@ def auto_step(model: Model, speed: float, safety: float = 0.6, dt_max: float = 1
     return dt
 
 
+def step_cause(model: Model, speed: float, dt_max: float = 1e-3) -> str:
+    """What sets the automatic step of ``model`` at ``speed`` (m/s), in words naming the
+    parameters: a yaw damper stage's relaxation ``K_d / C_d1`` (or ``C_d2``), the model's
+    fastest mode, or the step's cap of ``dt_max`` s."""
+    rate = float(np.max(np.abs(np.linalg.eigvals(model.jacobian(speed)))))
+    d = model.dpar
+    k_d = float(np.max(d[:, DamperParam.K_D]))
+    c_1 = float(np.min(d[:, DamperParam.C_D1]))
+    c_2 = float(np.min(d[:, DamperParam.C_D2]))
+    rate_1, rate_2 = k_d / c_1, k_d / c_2
+    top = max(rate, rate_1, rate_2)
+    if 0.6 / top >= dt_max:
+        return f"the step is its cap of {dt_max:g} s: the run is long, not stiff"
+    if max(rate_1, rate_2) < 0.5 * rate:  # the damper's relaxation is one of the modes
+        return (f"the step of {0.6 / top:.2g} s is set by the model's fastest mode "
+                f"({rate:.3g} 1/s, the Jacobian's largest eigenvalue: a stiff spring or a "
+                "light body)")  # fmt: skip
+    name, c = ("C_d1", c_1) if rate_1 >= rate_2 else ("C_d2", c_2)
+    return (f"the step of {0.6 / top:.2g} s is set by the yaw damper's relaxation K_d/{name} "
+            f"= {k_d:.4g} N/m / {c:.4g} N*s/m = {top:.3g} 1/s; a larger {name} or a smaller "
+            "K_d shortens the run")
+
+
 def stiff_damper_message(model: Model, rest: float, dt: float, rate_1: float, rate_2: float,
                          safety: float) -> str:  # fmt: skip
     """Why :func:`auto_step` refuses: the stage, its rate, the step and the way out."""
@@ -370,7 +395,9 @@ def integrate_model(
 
 def _check_positive(name: str, value: float, unit: str, low: float = 0.0,
                     high: float = math.inf) -> float:
-    value = float(value)
+    from railhunt.arguments import check_real
+
+    value = check_real(name, value, unit)
     if not (math.isfinite(value) and low < value <= high):
         raise ValueError(
             f"{name} = {value!r} {unit} is invalid: must be finite and in ({low}, {high}] {unit}"
@@ -450,6 +477,7 @@ def simulate(
     if method not in METHODS:
         raise ValueError(f"method = {method!r} is invalid: must be one of {', '.join(METHODS)}")
     check_excitation(excitation, (SingleDefect, InitialDisplacement, SampledTrack))
+    check_curve(curve)
     if model is None:
         model = Model(vehicle, creep_law=creep_law)
     x_init = _initial_state(model, excitation, x0)

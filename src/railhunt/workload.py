@@ -6,7 +6,18 @@ by the step (:func:`railhunt.simulation.auto_step`, 1 ms for the paper's vehicle
 less when a stiff yaw damper forces it down). :func:`workload` turns that into seconds
 with :data:`SECONDS_PER_STEP`, measured on the reference machine; the typical simulated
 time of each analysis is in :data:`SIMULATED_SECONDS`. The command line announces any
-estimate above a minute before it starts.
+estimate above a minute before it starts, and refuses one above :data:`CONFIRM_SECONDS`
+unless it is confirmed (``--yes``).
+
+The constants are fitted to ``python benchmarks/workload.py``, which runs representative
+commands and prints each estimate beside the measured time (CPU time of the process,
+which a loaded machine does not inflate). On the 2-core reference machine the estimates
+fall within a factor of 1.6 of the measurement either way: critical-speed 0.28 s
+estimated / 0.30 s measured, simulate 100 s 0.25 / 0.19 s, frequency (5 speeds) 0.2 /
+0.2 s, a 4-point sweep 1.4 / 1.25 s, bifurcation 200-2000 km/h 8.8 / 6.2 s (200-500 km/h:
+9.8 s), contact at 2401 positions 5.0 / 5.0 s, and Table 1 (91 points, 2 workers) 16 / 21
+s. A search's ``up to`` is its longest case (every trial to the longest run), not a
+spread.
 """
 
 from __future__ import annotations
@@ -14,32 +25,38 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-__all__ = ["NOTICE_SECONDS", "SECONDS_PER_CONTACT_POSITION", "SECONDS_PER_STEP",
+__all__ = ["CONFIRM_SECONDS", "NOTICE_SECONDS", "SECONDS_PER_CONTACT_POSITION", "SECONDS_PER_STEP",
            "SIMULATED_SECONDS", "Workload", "contact_workload", "workload"]  # fmt: skip
 
-#: Wall time of one RK4 step of the 17-DOF model with its bookkeeping (s): measured on the
-#: 2-core reference machine, 2.5 us in the critical-speed search (59 s simulated at 1 ms in
-#: 0.147 s) and 5.4 us in ``simulate`` storing every step with its derived channels.
-SECONDS_PER_STEP = 3e-6
+#: Wall time of one RK4 step of the 17-DOF model with its bookkeeping (s), fitted with
+#: ``benchmarks/workload.py`` on the 2-core reference machine: 2.7 us in the
+#: critical-speed search, 1.9 us in ``simulate`` with output every 10 ms.
+SECONDS_PER_STEP = 2.5e-6
 
 #: Wall time of the rigid contact search at one lateral position (s): 2401 positions of
-#: S1002 on UIC60 took 4.3 s on the reference machine (``railhunt contact --step 0.01``).
-SECONDS_PER_CONTACT_POSITION = 1.8e-3
+#: S1002 on UIC60 took 5.0 s of CPU on the reference machine (``railhunt contact --step
+#: 0.01``).
+SECONDS_PER_CONTACT_POSITION = 2.1e-3
 
 #: Estimated work above which the command line says so before it starts (s).
 NOTICE_SECONDS = 60.0
 
+#: Estimated work above which the command line asks for confirmation (``--yes``) (s).
+CONFIRM_SECONDS = 3600.0
+
 #: Typical simulated time (s) of one unit of each analysis, measured for the paper's
 #: vehicle: a critical-speed trial (run over the defect until the verdict is clear,
 #: 5 trials took 59 s), a hunting-frequency speed (the run and the shooting's
-#: finite-difference Jacobians), a km/h of a bifurcation diagram (13 s of wall time for
-#: 200-500 km/h at 1 ms), a sweep point (a search, a frequency), and the whole
-#: reproduction (66 s on 2 workers; ``quick``: 43 s in one process).
+#: finite-difference Jacobians: 5 speeds in 0.2 s), a bifurcation diagram (the branch
+#: following costs about the same whatever the speed range: 6-10 s of CPU for 200-500,
+#: 200-1000 and 200-2000 km/h at 1 ms), a sweep point (a search, a frequency), and the
+#: whole reproduction (66 s on 2 workers; ``quick``: 43 s in one process).
 SIMULATED_SECONDS = {
     "critical-speed trial": 15.0,
-    "frequency speed": 60.0,
-    "bifurcation km/h": 15.0,
-    "sweep point": 8 * 15.0 + 60.0,
+    "frequency speed": 16.0,
+    "bifurcation diagram": 3500.0,
+    "bifurcation km/h": 3500.0 / 300.0,
+    "sweep point": 8 * 15.0 + 16.0,
     "reproduce": 44_000.0,
     "reproduce quick": 14_000.0,
 }

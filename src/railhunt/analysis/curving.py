@@ -392,6 +392,9 @@ class EquilibriumPath:
     """
 
     def __init__(self, model: Model, curve: Curve | Callable[[float], Curve]) -> None:
+        from railhunt.arguments import check_curve
+
+        check_curve(curve, speed_dependent=True)
         self.model = model
         self.curve = curve
         self._solved: dict[float, np.ndarray] = {}

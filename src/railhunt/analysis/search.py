@@ -14,15 +14,19 @@ from collections.abc import Callable
 
 def check_search(start_kmh: float, step_kmh: float, tol_kmh: float, min_kmh: float,
                  max_kmh: float) -> None:  # fmt: skip
-    """Raise ``ValueError`` naming the first invalid search setting (all km/h)."""
+    """Raise ``ValueError`` naming the first invalid search setting (all km/h); a value
+    that is not a number is an :class:`railhunt.arguments.ArgumentTypeError`."""
+    from railhunt.arguments import check_real
+
     for name, value in (("start_kmh", start_kmh), ("step_kmh", step_kmh), ("tol_kmh", tol_kmh),
                         ("min_kmh", min_kmh), ("max_kmh", max_kmh)):  # fmt: skip
+        check_real(name, value, "km/h")
         if not (math.isfinite(value) and value > 0):
             raise ValueError(f"{name} = {value!r} km/h is invalid: must be finite and > 0")
     if not (min_kmh <= start_kmh <= max_kmh):
         raise ValueError(
-            f"start_kmh = {start_kmh} km/h is invalid: must lie in [min_kmh, max_kmh] = "
-            f"[{min_kmh}, {max_kmh}] km/h"
+            f"start_kmh = {start_kmh} km/h is invalid: must lie in [{min_kmh:g}, "
+            f"{max_kmh:g}] km/h, the range of the search"
         )
     if tol_kmh > step_kmh:
         raise ValueError(f"tol_kmh = {tol_kmh} km/h is invalid: must be <= step_kmh = {step_kmh}")

@@ -25,6 +25,18 @@ from scipy import signal
 
 #: Names accepted for the time column (before any ``[unit]``), case-insensitive.
 TIME_NAMES = ("t", "time")
+#: Units accepted for the time column and their factor to seconds; no unit means seconds.
+TIME_UNITS = {"": 1.0, "s": 1.0, "sec": 1.0, "ms": 1e-3, "us": 1e-6, "µs": 1e-6, "min": 60.0}
+#: A window whose peak amplitude is below this fraction of the record's largest excursion
+#: from its mean (or a record without any) holds no signal, only rounding.
+SILENCE = 1e-9
+
+
+def _unit(header: str) -> str:
+    text = header.strip()
+    if text.endswith("]") and "[" in text:
+        return text[text.rindex("[") + 1 : -1].strip()
+    return ""
 
 
 def _base(header: str) -> str:
@@ -39,14 +51,16 @@ def read_channel(
 ) -> tuple[np.ndarray, np.ndarray, str]:
     """Read the time column and one channel of a CSV file with a header row.
 
-    The time column is called ``t`` or ``time`` (any unit suffix like ``t [s]``, in
-    seconds). ``channel`` matches a header exactly or without its ``[unit]`` suffix, so
+    The time column is called ``t`` or ``time``, in seconds unless a unit suffix says
+    otherwise: ``t [s]``, ``t [ms]``, ``t [us]`` or ``t [min]`` are converted to seconds,
+    any other unit is refused. A UTF-8 byte-order mark (Excel's "CSV UTF-8") is skipped.
+    ``channel`` matches a header exactly or without its ``[unit]`` suffix, so
     ``y_w1`` finds ``y_w1 [m]`` in the CSV files of ``railhunt simulate --csv``.
 
     Returns
     -------
     t : numpy.ndarray
-        Times (s).
+        Times (s), converted from the column's unit.
     y : numpy.ndarray
         Channel values (the file's unit).
     name : str
@@ -54,7 +68,7 @@ def read_channel(
     """
     path = Path(path)
     try:
-        with path.open(newline="", encoding="utf-8") as fh:
+        with path.open(newline="", encoding="utf-8-sig") as fh:
             rows = [r for r in csv.reader(fh) if any(c.strip() for c in r)]
     except UnicodeDecodeError as exc:
         raise ValueError(f"{path}: not a text CSV file (byte {exc.start} is not UTF-8 text); "
@@ -72,6 +86,13 @@ def read_channel(
         raise ValueError(
             f"{path}: no time column (named 't' or 'time', in s); columns are: {listing}"
         )
+    time_unit = _unit(header[time_idx])
+    if time_unit.lower() not in TIME_UNITS and time_unit not in TIME_UNITS:
+        raise ValueError(
+            f"{path}: time column {header[time_idx]!r} is in {time_unit!r}; expected seconds "
+            f"(or one of: {', '.join(repr(u) for u in TIME_UNITS if u)})"
+        )
+    to_seconds = TIME_UNITS.get(time_unit, TIME_UNITS.get(time_unit.lower(), 1.0))
     if channel in header:
         idx = header.index(channel)
     elif channel in bases:
@@ -92,7 +113,7 @@ def read_channel(
                 ) from None
     if not np.all(np.isfinite(data)):
         raise ValueError(f"{path}: the time and {header[idx]!r} columns must be finite numbers")
-    return data[:, 0], data[:, 1], header[idx]
+    return data[:, 0] * to_seconds, data[:, 1], header[idx]
 
 
 def check_uniform(t: np.ndarray, rtol: float = 1e-3) -> float:
@@ -132,12 +153,22 @@ class Spectrogram:
         Single-sided amplitude, shape (frequencies, times), in the signal's unit.
     window : float
         Window length (s); the resolution is ``1/window`` Hz.
+    level : float
+        Largest excursion of the record from its mean (signal unit); 0 for a constant (or
+        all-zero) record, which holds no signal.
     """
 
     times: np.ndarray
     frequencies: np.ndarray
     amplitude: np.ndarray
     window: float
+    level: float = math.inf
+
+    def silent(self) -> np.ndarray:
+        """Per window: True where the peak amplitude is only rounding (no signal)."""
+        peak = np.max(self.amplitude[1:], axis=0) if self.amplitude.shape[0] > 1 else \
+            np.zeros(self.times.size)
+        return peak <= SILENCE * self.level
 
     @property
     def resolution(self) -> float:
@@ -183,7 +214,9 @@ def stft(t: np.ndarray, y: np.ndarray, window: float = 2.0, overlap: float = 0.7
     )  # fmt: skip
     amp = 2.0 * np.abs(z)
     amp[0] *= 0.5
-    return Spectrogram(times=t[0] + tau, frequencies=f, amplitude=amp, window=nperseg / fs)
+    level = float(np.max(np.abs(y - np.mean(y)))) if y.size else 0.0
+    return Spectrogram(times=t[0] + tau, frequencies=f, amplitude=amp, window=nperseg / fs,
+                       level=level)
 
 
 @dataclass
@@ -195,7 +228,8 @@ class Band:
     start, end : float
         Centre times (s) of the first and last window of the stretch.
     frequency : float
-        Median dominant frequency (Hz).
+        Median dominant frequency (Hz); NaN over a stretch without signal (the record is
+        constant there, see :attr:`no_signal`).
     low, high : float
         Band around it (Hz): where the amplitude stays above ``1/sqrt(2)`` of the peak
         (half power), widest over the stretch.
@@ -210,6 +244,11 @@ class Band:
     high: float
     amplitude: float
 
+    @property
+    def no_signal(self) -> bool:
+        """True over a stretch where the record holds no signal (constant or zero)."""
+        return not math.isfinite(self.frequency)
+
 
 def dominant_frequency_track(
     spec: Spectrogram, fmin: float | None = None, fmax: float | None = None
@@ -217,7 +256,8 @@ def dominant_frequency_track(
     """Per window: dominant frequency, half-power band (low, high) and peak amplitude.
 
     ``fmin`` defaults to the first bin above 0 Hz (the mean is not a vibration), ``fmax``
-    to the Nyquist frequency.
+    to the Nyquist frequency. A window without signal (:meth:`Spectrogram.silent`) has
+    NaN frequencies and a zero amplitude: no band dominates where nothing vibrates.
     """
     f = spec.frequencies
     lo_f = f[1] if fmin is None else float(fmin)
@@ -243,19 +283,28 @@ def dominant_frequency_track(
         while i1 < a.size - 1 and a[i1 + 1] >= half:
             i1 += 1
         peak_f[k], low[k], high[k], amp[k] = f[sel[i]], f[sel[i0]], f[sel[i1]], a[i]
+    quiet = spec.silent()
+    peak_f[quiet] = low[quiet] = high[quiet] = np.nan
+    amp[quiet] = 0.0
     return peak_f, low, high, amp
 
 
 def dominant_bands(
     spec: Spectrogram, fmin: float | None = None, fmax: float | None = None
 ) -> list[Band]:
-    """Stretches of time with the same dominant frequency (within one bin)."""
+    """Stretches of time with the same dominant frequency (within one bin).
+
+    A stretch without signal is one band whose :attr:`Band.no_signal` is True."""
     peak_f, low, high, amp = dominant_frequency_track(spec, fmin, fmax)
     res = spec.resolution
+    quiet = np.isnan(peak_f)
     bands: list[Band] = []
     start = 0
     for k in range(1, peak_f.size + 1):
-        if k == peak_f.size or abs(peak_f[k] - np.median(peak_f[start:k])) > res * 1.01:
+        if k < peak_f.size and quiet[k] and quiet[start]:
+            continue
+        if (k == peak_f.size or quiet[k] != quiet[start]
+                or abs(peak_f[k] - np.median(peak_f[start:k])) > res * 1.01):  # fmt: skip
             seg = slice(start, k)
             bands.append(Band(
                 start=float(spec.times[start]), end=float(spec.times[k - 1]),
@@ -265,17 +314,3 @@ def dominant_bands(
             start = k
     return bands
 
-
-def plot_spectrogram(
-    spec: Spectrogram, path: str | os.PathLike[str], title: str = "", unit: str = "",
-    bands: list[Band] | None = None, fmax: float | None = None, *, full_range: bool = False,
-) -> Path:  # fmt: skip
-    """Draw the STFT amplitude map to a file: :func:`railhunt.plots.plot_spectrogram`.
-
-    Kept here for existing callers; the figure lives with the others in
-    :mod:`railhunt.plots.spectrogram` (viridis, 0-20 Hz by default, a legend for the
-    dominant bands).
-    """
-    from railhunt.plots.spectrogram import plot_spectrogram as plot
-
-    return plot(spec, path, title, unit, bands, fmax, full_range=full_range)

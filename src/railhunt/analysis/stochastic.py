@@ -423,9 +423,12 @@ def stochastic_critical_speed(
     if irregularity is None:
         irregularity = track_irregularity("german-high", length=2000.0, dx=0.25, seed=1)
     if not isinstance(irregularity, SampledTrack):
-        raise ValueError(
-            f"irregularity = {type(irregularity).__name__} is invalid: must be a SampledTrack "
-            "(railhunt.track_irregularity or railhunt.load_irregularity)"
+        from railhunt.arguments import ArgumentTypeError
+
+        raise ArgumentTypeError(
+            f"irregularity = {irregularity!r:.60} is a {type(irregularity).__name__}, not a "
+            "SampledTrack: give railhunt.track_irregularity(...) (a published spectrum) or "
+            "railhunt.load_irregularity(PATH) (a measured track)"
         )
     check_search(start_kmh, step_kmh, tol_kmh, min_kmh, max_kmh)
     if f0_hz is not None and not (math.isfinite(f0_hz) and 0.5 <= f0_hz <= 50.0):

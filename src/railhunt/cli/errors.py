@@ -13,7 +13,8 @@ from typing import Any
 
 import click
 
-__all__ = ["PROG", "CliError", "one_line_usage_errors", "user_input"]
+__all__ = ["DEBUG_ENV", "PROG", "CliError", "flag_names", "no_tracebacks", "one_line_usage_errors",
+           "user_input"]
 
 #: Name of the program in messages and usage lines.
 PROG = "railhunt"
@@ -48,6 +49,88 @@ def one_line_usage_errors() -> Iterator[None]:
         raise CliError(message) from None
 
 
+#: Unit suffixes the library adds to an argument's name (``start_kmh``) that a flag of the
+#: same quantity leaves out (``--start``).
+_UNIT_SUFFIXES = ("", "_kmh", "_mm", "_m", "_s", "_hz")
+
+
+def _flag_names(ctx: click.Context | None) -> dict[str, str]:
+    """Library argument names -> the flag of the running command that sets them: a
+    flag's destination or its own name, with or without a unit suffix."""
+    if ctx is None:
+        return {}
+    names: dict[str, str] = {}
+    for param in ctx.command.params:
+        flags = [o for o in getattr(param, "opts", []) if o.startswith("--")]
+        if not flags or param.name is None:
+            continue
+        flag = flags[0]
+        for base in {param.name, flag[2:].replace("-", "_")}:
+            for suffix in _UNIT_SUFFIXES:
+                names.setdefault(base + suffix, flag)
+    return names
+
+
+def flag_names(message: str, ctx: click.Context | None = None) -> str:
+    """``message`` with the library's argument names replaced by the flags that set them:
+    ``start_kmh = 5.0 km/h is invalid`` becomes ``--start 5.0 km/h is invalid``."""
+    import re
+
+    ctx = ctx or click.get_current_context(silent=True)
+    names = _flag_names(ctx)
+    if not names:
+        return message
+
+    def flag(match: re.Match[str]) -> str:
+        name, assigned = match.group(1), match.group(2)
+        if name not in names or not (assigned or "_" in name):  # prose words stay
+            return match.group(0)
+        return f"{names[name]} " if assigned else names[name]
+
+    return re.sub(r"(?<![\w-])([a-z][a-z0-9_]*)(?![\w(])( = )?", flag, message)
+
+
+#: Set to 1 (or give ``railhunt --debug``) to see the traceback of an unexpected error.
+DEBUG_ENV = "RAILHUNT_DEBUG"
+#: Where ``--debug`` is kept (``click.Context.meta``).
+DEBUG_KEY = "railhunt.debug"
+
+
+def _debugging(ctx: click.Context | None) -> bool:
+    import os
+
+    flag = os.environ.get(DEBUG_ENV, "").strip().lower() not in ("", "0", "no", "false")
+    return flag or bool(ctx is not None and ctx.meta.get(DEBUG_KEY))
+
+
+@contextlib.contextmanager
+def no_tracebacks(ctx: click.Context | None = None) -> Iterator[None]:
+    """The command line's safety net: no traceback reaches a user.
+
+    An invalid input the command did not catch itself (a library ``ValueError``, a
+    ``TypeError`` naming an argument, a curve without a steady state) becomes one
+    ``railhunt: error:`` line (exit status 2); any other exception one line naming it, with
+    the hint to rerun with ``RAILHUNT_DEBUG=1`` or ``--debug`` for the traceback (exit
+    status 1). With either of those the exception propagates unchanged.
+    """
+    try:
+        yield
+    except (click.ClickException, click.exceptions.Exit, click.Abort):
+        raise
+    except Exception as exc:
+        if _debugging(ctx):
+            raise
+        from railhunt.analysis.curving import CurvingError
+
+        text = " ".join(str(exc).split()) or type(exc).__name__
+        if isinstance(exc, ValueError | TypeError | CurvingError):
+            raise CliError(flag_names(text)) from None
+        click.echo(f"{PROG}: error: unexpected {type(exc).__name__}: {text[:300]} (run again "
+                   f"with {DEBUG_ENV}=1 or 'railhunt --debug ...' to see where; please "
+                   "report it)", err=True)  # fmt: skip
+        raise SystemExit(1) from None
+
+
 @contextlib.contextmanager
 def user_input(prefix: str = "") -> Iterator[None]:
     """Report ``ValueError`` (invalid inputs) and ``OSError`` (files) as a :class:`CliError`.
@@ -63,4 +146,7 @@ def user_input(prefix: str = "") -> Iterator[None]:
         where = f"{exc.filename}: " if exc.filename else ""
         raise CliError(f"{prefix}{where}{exc.strerror or exc}") from None
     except ValueError as exc:
-        raise CliError(f"{prefix}{exc}") from None
+        text = flag_names(str(exc))
+        if prefix.strip().endswith(":") and text.startswith(prefix.strip()[:-1] + " "):
+            prefix = ""  # "--spectrum: --spectrum 'bad' is invalid" says it twice
+        raise CliError(f"{prefix}{text}") from None

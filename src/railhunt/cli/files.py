@@ -21,16 +21,34 @@ import click
 
 from railhunt.cli.errors import CliError
 
-__all__ = ["OVERWRITE_POLICY", "check_output_folder", "check_outputs", "file_option",
+__all__ = ["OVERWRITE_POLICY", "SIDECAR_OPTIONS", "OutputPath", "check_output_folder",
+           "check_outputs", "file_option",
            "overwrite_option", "sidecar_path", "write_sidecar"]  # fmt: skip
 
 Decorator = Callable[[Callable[..., Any]], Callable[..., Any]]
 
 
+class OutputPath(click.Path):
+    """A click path for an output file or folder that refuses an empty name: ``--out ''``
+    would otherwise be the current folder (``Path('')`` is ``.``)."""
+
+    def __init__(self, *, folder: bool = False) -> None:
+        super().__init__(file_okay=not folder, dir_okay=folder, path_type=Path)
+        self.folder = folder
+
+    def convert(self, value: Any, param: click.Parameter | None,
+                ctx: click.Context | None) -> Any:  # fmt: skip
+        if isinstance(value, str) and not value.strip():
+            what = "folder" if self.folder else "file"
+            self.fail(f"{value!r} is an empty name: give a {what} name (for the current "
+                      f"folder, write '.')" if self.folder else
+                      f"{value!r} is an empty name: give a {what} name", param, ctx)  # fmt: skip
+        return super().convert(value, param, ctx)
+
+
 def file_option(flag: str, dest: str, help: str, metavar: str | None = "FILE") -> Decorator:
     """An output file option (``--png FILE``, ``--csv FILE``, ...); see :func:`check_outputs`."""
-    return click.option(flag, dest, type=click.Path(dir_okay=False, path_type=Path),
-                        metavar=metavar, help=help)  # fmt: skip
+    return click.option(flag, dest, type=OutputPath(), metavar=metavar, help=help)
 
 
 #: The overwrite policy, shown by ``railhunt --help`` and ``--overwrite``'s help.
@@ -56,12 +74,19 @@ def _writable_folder(folder: Path) -> str | None:
     return None
 
 
+#: The output options whose file is written with its metadata sidecar (FILE.meta.json,
+#: :func:`write_sidecar`): the sidecar is checked with its file.
+SIDECAR_OPTIONS = frozenset({"csv"})
+
+
 def check_outputs(*, overwrite: bool = False, **files: Path | None) -> None:
     """Check every output file before anything is computed (the overwrite policy included).
 
     Each given file must be creatable (its folder exists, is a folder and takes a new
     file) or, when it exists, be a file that can be written and ``overwrite`` must be set;
-    no two options may name the same file.
+    no two options may name the same file. The file of an option of
+    :data:`SIDECAR_OPTIONS` brings its sidecar ``FILE.meta.json``, which follows the same
+    policy (a sidecar left from an earlier run is not replaced without ``overwrite``).
 
     Parameters
     ----------
@@ -76,9 +101,7 @@ def check_outputs(*, overwrite: bool = False, **files: Path | None) -> None:
         Naming the option, the file and what to do.
     """
     seen: dict[Path, str] = {}
-    for option, path in files.items():
-        if path is None:
-            continue
+    for option, path in _with_sidecars(files):
         flag = f"--{option}"
         real = path.resolve()
         if real in seen:
@@ -103,6 +126,19 @@ def check_outputs(*, overwrite: bool = False, **files: Path | None) -> None:
         if why is not None:
             raise CliError(f"{flag} {path}: cannot write in folder {str(path.parent)!r} "
                            f"({why})")  # fmt: skip
+
+
+def _with_sidecars(files: dict[str, Path | None]) -> list[tuple[str, Path]]:
+    """``(option, path)`` of every given file, each followed by its sidecar (the option
+    then reads like ``csv's metadata``, so that a message names both)."""
+    out = []
+    for option, path in files.items():
+        if path is None:
+            continue
+        out.append((option, path))
+        if option in SIDECAR_OPTIONS:
+            out.append((f"{option} {path}: its metadata file", sidecar_path(path)))
+    return out
 
 
 def check_output_folder(flag: str, folder: Path, files: Iterable[str],

@@ -255,6 +255,15 @@ def build_vehicle(vehicle_file: Path | str | None, sets: dict[str, float]) -> Ve
         given = ", ".join(f"{k}={v:g}" for k, v in sets.items())
         with user_input(f"--set {given}: "):
             vehicle = vehicle.replace(name=f"{vehicle.name} with {given}", **sets)
+    if vehicle.contact is not None:
+        # The profiles of [contact] must give a geometry that fits the vehicle (the wheels
+        # fit the track, r0 is the centred rolling radius): checked once, here, before
+        # any command (or every point of a study) fails on it.
+        from railhunt.model import Model
+
+        where = "--vehicle " + (str(vehicle_file) if vehicle_file else vehicle.name)
+        with user_input(f"{where}: [contact]: "):
+            Model(vehicle)
     return vehicle
 
 

@@ -144,11 +144,35 @@ def command_record() -> dict[str, Any]:
     return {"command": f"railhunt {ctx.info_name}", "options": json_safe(ctx.params)}
 
 
-def announce(work: Any) -> None:
+#: Where ``--yes`` is kept (``click.Context.meta``).
+YES_KEY = "railhunt.yes"
+
+
+def announce(work: Any, vehicle: Any = None, speed: float | None = None) -> None:
     """Say on stderr, before it starts, that a computation will take more than a minute
-    (``work`` is a :class:`railhunt.workload.Workload`; nothing when it is shorter)."""
+    (``work`` is a :class:`railhunt.workload.Workload`; nothing when it is shorter).
+
+    An estimate above :data:`railhunt.workload.CONFIRM_SECONDS` (an hour) is refused
+    unless the command was given ``--yes``; with ``vehicle`` and ``speed`` (m/s) the
+    refusal names what sets the step (:func:`railhunt.simulation.step_cause`).
+    """
     import click
 
+    from railhunt.workload import CONFIRM_SECONDS
+
+    ctx = click.get_current_context(silent=True)
+    confirmed = bool(ctx is not None and ctx.meta.get(YES_KEY))
+    if work.seconds > CONFIRM_SECONDS and not confirmed:
+        from railhunt.cli.errors import CliError
+
+        cause = ""
+        if vehicle is not None and speed is not None:
+            from railhunt.model import Model
+            from railhunt.simulation import step_cause
+
+            cause = f"; {step_cause(Model(vehicle), speed)}"
+        raise CliError(f"this would take {work.describe()}{cause}; give --yes to run it "
+                       "anyway")  # fmt: skip
     if work.notable:
         click.echo(f"railhunt: note: this will take {work.describe()}", err=True)
 

@@ -178,6 +178,11 @@ class Command(click.Command):
 
     def __init__(self, *args: Any, rules: Sequence[Rule] = (), **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
+        self.params.append(click.Option(
+            ["--yes"], is_flag=True, expose_value=False,
+            callback=lambda ctx, param, value: ctx.meta.__setitem__("railhunt.yes", value),
+            help="Run even when the work is estimated at more than an hour (without it "
+            "such a run is refused before it starts)."))  # fmt: skip
         self.rules = tuple(rules)
         self._names = {flag: p.name for p in self.params for flag in p.opts if p.name}
         for rule in self.rules:

@@ -16,6 +16,7 @@ from typing import Any
 import click
 
 from railhunt.cli.errors import CliError, user_input
+from railhunt.cli.files import OutputPath
 from railhunt.cli.options import check_outputs
 from railhunt.cli.output import announce
 from railhunt.cli.rules import Excludes, Requires
@@ -40,28 +41,55 @@ STUDY_RULES = (
 )  # fmt: skip
 
 
+#: Where ``--wait-for-workers`` is kept between parsing and :func:`scheduler_client`.
+_WAIT_KEY = "railhunt.wait_for_workers"
+
+
+def _keep_wait(ctx: click.Context, param: click.Parameter, value: bool) -> bool:
+    ctx.meta[_WAIT_KEY] = value
+    return value
+
+
 def connect_timeout_option(default: float = 30.0) -> Decorator:
-    """``--connect-timeout S``: how long to try to reach ``--scheduler``, in (0, 3600] s."""
+    """``--connect-timeout S``: how long to try to reach ``--scheduler``, in (0, 3600] s;
+    with it ``--wait-for-workers`` (read by :func:`scheduler_client`, not passed on)."""
     from railhunt.cli.options import number_range
 
-    return click.option("--connect-timeout", "connect_timeout", type=float, default=default,
-                        show_default=True, metavar="S",
-                        callback=number_range("s", 0.0, 3600.0),
-                        help="How long to try to reach --scheduler (s); a refused port "
-                        "fails at once.")  # fmt: skip
+    timeout = click.option("--connect-timeout", "connect_timeout", type=float,
+                           default=default, show_default=True, metavar="S",
+                           callback=number_range("s", 0.0, 3600.0),
+                           help="How long to try to reach --scheduler and read its "
+                           "handshake (s); a refused port fails at once.")  # fmt: skip
+    wait = click.option("--wait-for-workers", is_flag=True, expose_value=False,
+                        callback=_keep_wait,
+                        help="Wait for the --scheduler's first worker as long as it takes "
+                        "(without it, a scheduler with no workers is an error after "
+                        "5 s).")  # fmt: skip
+
+    def decorate(func: Callable[..., Any]) -> Callable[..., Any]:
+        return timeout(wait(func))
+
+    return decorate
 
 
 @contextlib.contextmanager
 def scheduler_client(scheduler: str | None, connect_timeout: float) -> Iterator[Any]:
     """A Dask client joined to ``--scheduler`` (None without one), closed on exit; a
     scheduler that cannot be joined is one ``railhunt: error:`` line naming it."""
+    ctx = click.get_current_context(silent=True)
+    wait = bool(ctx.meta.get(_WAIT_KEY)) if ctx is not None else False
     if scheduler is None:
+        if wait:
+            raise CliError("--wait-for-workers is about --scheduler: give --scheduler ADDRESS")
         yield None
         return
     from railhunt.studies.execute import SchedulerError, join_scheduler
 
+    if wait:
+        click.echo(f"railhunt: waiting for the first worker of {scheduler} (Ctrl-C to stop)",
+                   err=True)  # fmt: skip
     try:
-        client = join_scheduler(scheduler, connect_timeout)
+        client = join_scheduler(scheduler, connect_timeout, wait_for_workers=wait)
     except SchedulerError as exc:
         raise CliError(f"--scheduler {scheduler}: {exc}") from None
     try:
@@ -86,8 +114,11 @@ def check_study_outputs(out: Path | None, resume: bool, overwrite: bool,
 
     ``out`` may exist with ``--resume`` (it is continued) or ``--overwrite`` (replaced);
     the other files follow the overwrite policy of :func:`railhunt.cli.options.check_outputs`.
+    The study's description ``FILE.sweep.json`` (and a Parquet file's journal) go with
+    ``out``: one left from an earlier run counts as ``out`` existing.
     """
     from railhunt.studies.store import journal_path
+    from railhunt.studies.store import sidecar_path as study_sidecar
 
     check_outputs(overwrite=overwrite, **files)
     if out is None:
@@ -95,11 +126,21 @@ def check_study_outputs(out: Path | None, resume: bool, overwrite: bool,
     for option, path in files.items():
         if path is not None and path.resolve() == out.resolve():
             raise CliError(f"--out and --{option} both name {out}: give each its own file")
-    exists = out.exists() or journal_path(out).exists()
-    if exists and not (resume or overwrite):
-        raise CliError(f"--out {out} exists: continue it with --resume, replace it with "
-                       "--overwrite, or choose another file")  # fmt: skip
-    check_outputs(overwrite=True, out=out)
+    companions = [p for p in (journal_path(out), study_sidecar(out)) if p != out]
+    for option, path in files.items():
+        if path is not None and path.resolve() in [p.resolve() for p in companions]:
+            raise CliError(f"--{option} {path} is the study file of --out {out}: choose "
+                           "another file")  # fmt: skip
+    if not (resume or overwrite):
+        if out.exists():
+            raise CliError(f"--out {out} exists: continue it with --resume, replace it with "
+                           "--overwrite, or choose another file")  # fmt: skip
+        left = [p for p in companions if p.exists()]
+        if left:
+            raise CliError(f"--out {out}: {left[0]} of an earlier study exists: continue it "
+                           "with --resume, replace it with --overwrite, or choose another "
+                           "file")  # fmt: skip
+    check_outputs(overwrite=True, out=out, **{f"out {out}: its study file": companions[-1]})
 
 
 def study_options(out_required: bool = True,
@@ -125,7 +166,7 @@ def study_options(out_required: bool = True,
                             help="Replace FILE (and any other output file) if it exists.")(func)
         func = click.option("--resume", is_flag=True,
                             help="Continue FILE: compute only its missing points.")(func)
-        return click.option("--out", "out", type=click.Path(dir_okay=False, path_type=Path),
+        return click.option("--out", "out", type=OutputPath(),
                             required=out_required, metavar="FILE", help=out_help)(func)
 
     return decorate
@@ -135,8 +176,14 @@ def study_options(out_required: bool = True,
 STEP_PARAMETERS = frozenset({"C_d1", "C_d2", "K_d"})
 
 #: Simulated time (s) of one point per study output: the nonlinear critical-speed search
-#: (~8 trials), the hunting-frequency run and shooting; the linear outputs cost no steps.
-OUTPUT_SECONDS = {"critical_speed": 120.0, "hunting_frequency": 60.0}
+#: (~8 trials), the hunting-frequency run and shooting; the linear outputs cost no steps
+#: (fitted with ``benchmarks/workload.py``, see :mod:`railhunt.workload`).
+OUTPUT_SECONDS = {"critical_speed": 120.0, "hunting_frequency": 16.0}
+
+
+#: Points of a study whose own step is computed for its estimate (evenly spread over the
+#: study; the others are counted at the mean rate of these).
+STEP_SAMPLE = 64
 
 
 def announce_study(vehicle: Any, points: list[Any], outputs: tuple[str, ...],
@@ -144,10 +191,10 @@ def announce_study(vehicle: Any, points: list[Any], outputs: tuple[str, ...],
                    what: str = "points") -> None:  # fmt: skip
     """Announce a study of more than a minute before it starts (:mod:`railhunt.workload`).
 
-    The step is the smallest automatic step of the nominal vehicle and of the study's
-    points at the ends of each yaw damper parameter's range (where the step is set); a
-    point whose step is refused (a stiff damper) is left out: it fails alone, with the
-    reason in its row.
+    Each point runs at its own automatic step, so the steps are counted point by point
+    (at most :data:`STEP_SAMPLE` of them, evenly spread, stand for the others) when the
+    study varies a parameter that sets the step; a point whose step is refused (a stiff
+    damper) is left out: it fails alone, with the reason in its row.
     """
     from railhunt import Model
     from railhunt.simulation import StiffDamperError, auto_step
@@ -158,26 +205,35 @@ def announce_study(vehicle: Any, points: list[Any], outputs: tuple[str, ...],
     per_point = sum(OUTPUT_SECONDS.get(o, 0.0) for o in outputs)
     if not points or per_point == 0.0:
         return
-    names = {n for p in points for n in p.values if n in STEP_PARAMETERS}
-    extremes = [min(points, key=lambda p, n=n: p.values[n]) for n in names]
-    extremes += [max(points, key=lambda p, n=n: p.values[n]) for n in names]
-    steps = []
-    for values in [{}] + [p.values for p in extremes]:
+    varied = any(n in STEP_PARAMETERS for p in points for n in p.values)
+    chosen = points[:: max(1, len(points) // STEP_SAMPLE)][:STEP_SAMPLE] if varied else []
+    rates, stiffest = [], (0.0, vehicle)
+    for values in [{}] + [p.values for p in chosen]:
         try:
-            steps.append(auto_step(Model(vehicle.replace(**values)), kmh_to_ms(300.0)))
+            v = vehicle.replace(**values)
+            rates.append(1.0 / auto_step(Model(v), kmh_to_ms(300.0)))
         except (StiffDamperError, ValueError):
             continue
-    if not steps:
+        stiffest = max(stiffest, (rates[-1], v), key=lambda r: r[0])
+    if not rates:
         return
+    rate = sum(rates[1:]) / len(rates[1:]) if len(rates) > 1 else rates[0]
     n = 1 if scheduler is not None else check_workers(workers)
-    announce(workload(len(points) * per_point, min(steps),
-                      f"{len(points)} {what} of ~{per_point:.0f} s simulated", workers=n))
+    announce(workload(len(points) * per_point, 1.0 / rate,
+                      f"{len(points)} {what} of ~{per_point:.0f} s simulated", workers=n),
+             stiffest[1], kmh_to_ms(300.0))  # fmt: skip
 
 
 def check_workers_option(workers: int | None) -> None:
-    """``--workers N`` must be in [1, 1024] (or left out: all cores)."""
+    """``--workers N`` must be in [1, 1024] (or left out: all cores); more than the cores
+    are capped at them, with a note on stderr saying so and why."""
     if workers is not None and not 1 <= workers <= 1024:
         raise CliError(f"--workers {workers} is invalid: must be in [1, 1024]")
+    from railhunt.studies.execute import capped_workers
+
+    why = capped_workers(workers)
+    if why is not None:
+        click.echo(f"railhunt: note: --workers {why}", err=True)
 
 
 @contextlib.contextmanager
@@ -205,7 +261,15 @@ def running_study(out: Path | None, points: str = "points") -> Iterator[None]:
 
 
 def report_lost(result: Any, points: str = "points") -> None:
-    """Exit with status 1 when points of the study were lost (they can be resumed)."""
+    """Exit with status 1 when points of the study were lost (they can be resumed), or
+    when every point failed (the study computed nothing: its first error is shown)."""
+    from railhunt.studies.store import STATUS_FAILED
+
+    failed = [row for row in result.rows if row.get("status") == STATUS_FAILED]
+    if result.rows and len(failed) == len(result.rows) and not result.lost:
+        click.echo(f"railhunt: error: every one of the {len(failed)} {points} failed; the "
+                   f"first: {failed[0].get('message', '')}", err=True)  # fmt: skip
+        raise SystemExit(1)
     if result.lost:
         how = ("run the same command with --resume to compute them" if result.path is not None
                else "run the command again")  # fmt: skip

@@ -247,6 +247,7 @@ def contact_geometry(
     y_gauge = _gauge_point(rail_c, gauge_depth)
     y_rail = 0.5 * gauge - y_gauge
     y_tape = 0.5 * back_to_back + flange_back
+    _check_fit(wheel, gauge, back_to_back, flange_back, gauge_depth)
     side = _Side(wheel, rail_c, y_tape, y_rail, r0, sample_step)
 
     n = int(round(y_max / y_step))
@@ -300,6 +301,40 @@ def contact_geometry(
         wheel_left=out["wl"], wheel_right=out["wr"], rail_left=out["tl"],
         rail_right=out["tr"], jump=jump, r0=r0, params=params,
     )
+
+
+def _flange_face(wheel: Profile, depth: float) -> float | None:
+    """Lateral profile coordinate (m) of the flange face ``depth`` below the tread's
+    tape circle (where the wheel's radius exceeds the nominal one by ``depth``); None for
+    a wheel whose flange is not that high."""
+    tip = int(np.argmax(wheel.z))
+    if wheel.z[tip] < depth:
+        return None
+    face_y, face_z = wheel.y[tip:], wheel.z[tip:]
+    below = np.nonzero(face_z < depth)[0]
+    if below.size == 0:
+        return None
+    k = int(below[0])  # first point of the face under ``depth``; k - 1 is above it
+    return float(np.interp(depth, [face_z[k], face_z[k - 1]], [face_y[k], face_y[k - 1]]))
+
+
+def _check_fit(wheel: Profile, gauge: float, back_to_back: float, flange_back: float,
+               depth: float) -> None:  # fmt: skip
+    """Refuse a track too narrow for the wheelset, before any contact search: the
+    distance over the two flange faces, ``depth`` below the tape circle (where the gauge
+    is measured on the rails), must be less than the gauge."""
+    face = _flange_face(wheel, depth)
+    if face is None:
+        return
+    flange = flange_back + face  # flange thickness from the inner face (m)
+    width = back_to_back + 2.0 * flange
+    if width >= gauge:
+        raise ProfileError(
+            f"gauge = {gauge:g} m is too narrow for these wheels: the wheelset measures "
+            f"{width:.4f} m over its flanges (back_to_back {back_to_back:g} m + 2 x "
+            f"{flange * 1e3:.1f} mm of flange at {depth * 1e3:g} mm), so the gauge must exceed "
+            f"{width:.4f} m (or back_to_back be below {gauge - 2.0 * flange:.4f} m)"
+        )
 
 
 def _gauge_point(rail: Profile, depth: float) -> float:

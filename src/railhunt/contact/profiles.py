@@ -174,11 +174,18 @@ def read_profile(
     ProfileError
         An unreadable file, or (without ``repair``) points whose ``y`` goes back and
         forth: the file and the first point out of order are named. A profile listed
-        from the field side to the flange (``y`` falling throughout) is monotonic.
+        from the field side to the flange (``y`` falling throughout) is monotonic. And
+        a file that cannot be the profile it is given as
+        (:mod:`railhunt.contact.profile_checks`): decimal commas, a SIMPACK header of
+        the other kind, fewer than 20 points, values in metres (or not in mm), a rail
+        head given as the wheel or a wheel as the rail. A single point far off its
+        neighbours is kept with a warning. A UTF-8 byte-order mark is skipped.
     """
+    from railhunt.contact import profile_checks
+
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8", errors="replace")
+        text = path.read_text(encoding="utf-8-sig", errors="replace")
     except OSError as exc:
         raise ProfileError(f"profile file {str(path)!r} cannot be read: {exc}") from exc
     meta: dict = {}
@@ -187,6 +194,7 @@ def read_profile(
         if kind is None and "type" in meta:
             kind = "wheel" if int(meta["type"]) == 1 else "rail"
     else:
+        _checked(profile_checks.check_decimal_commas, text, str(path))
         y, z = _parse_columns(text, str(path))
         y, z = y * 1e-3, z * 1e-3
     _check_monotonic(y, str(path), repair)
@@ -201,9 +209,19 @@ def read_profile(
                 f"profile file {str(path)!r}: kind cannot be inferred from the extension "
                 f"{suffix!r}; pass kind='wheel' or kind='rail'"
             )
+    _checked(profile_checks.check_kind, meta, kind, str(path))
+    _checked(profile_checks.check_shape, y, z, kind, str(path))
     if mirror_y:
         y = -y
     return Profile(y, z, kind, path.name, str(path), meta)
+
+
+def _checked(check, *args) -> None:  # noqa: ANN001 - a check of profile_checks
+    """Run a check of :mod:`railhunt.contact.profile_checks`, its refusal a ProfileError."""
+    try:
+        check(*args)
+    except ValueError as exc:
+        raise ProfileError(str(exc)) from None
 
 
 def write_profile(profile: Profile, path: str | Path, comment: str = "") -> Path:

@@ -24,9 +24,13 @@ from railhunt.kernel.rhs import rhs
 from railhunt.kernel.track import alignment
 
 #: Status codes of a run.
-OK, DERAILED, DIVERGED, STEP_FAILED = 0, 1, 2, 3
+OK, DERAILED, DIVERGED, STEP_FAILED, STEP_LIMIT = 0, 1, 2, 3, 4
 #: Status code -> name (as results and JSON report it).
-STATUS_NAMES = {OK: "ok", DERAILED: "derailed", DIVERGED: "diverged", STEP_FAILED: "step-failed"}
+STATUS_NAMES = {OK: "ok", DERAILED: "derailed", DIVERGED: "diverged", STEP_FAILED: "step-failed",
+                STEP_LIMIT: "step-limit"}  # fmt: skip
+#: The adaptive method's step budget: one accepted step per this many seconds of the run
+#: on average (at least 1000 steps); its output without ``output_dt`` is sized by it.
+DOPRI5_MEAN_STEP = 1e-5
 #: Status code -> how a run with that status ended (``t``: end time in s, ``y_limit_mm``:
 #: the derailment limit in mm).
 MESSAGES = {
@@ -35,6 +39,9 @@ MESSAGES = {
               "the track centre line",
     DIVERGED: "stopped at t = {t:.3f} s: the state became non-finite",
     STEP_FAILED: "stopped at t = {t:.3f} s: step size underflow",
+    STEP_LIMIT: "stopped at t = {t:.3f} s before the end: the adaptive method used up its "
+                "budget of one step per 10 us of the run (the run is that stiff there); "
+                "use method 'rk4' (--method rk4), or a larger rtol",
 }  # fmt: skip
 
 
@@ -324,10 +331,13 @@ def _run_dopri5(x0, t0, duration, v, s, *, dt, output_dt, rtol, atol, y_limit):
     else:
         atol_v = np.broadcast_to(atol, (n,)).copy()
     out_dt = -1.0 if output_dt is None else float(output_dt)
-    max_steps = int(max(1000, duration / 1e-5))
+    max_steps = int(max(1000, duration / DOPRI5_MEAN_STEP))
     t, x, status, n_acc, n_rej = dopri5(
         x0, t0, t0 + duration, out_dt, rtol, atol_v, 1e-4, 0.01, max_steps, y_limit, v, s
     )
+    last_output = t0 + duration - max(out_dt, 0.0)
+    if status == OK and n_acc >= max_steps and t[-1] < last_output - 1e-12:
+        status = STEP_LIMIT
     stats = {"steps": n_acc, "rejected": n_rej, "rhs_calls": 6 * (n_acc + n_rej) + 1}
     return t, x, status, stats
 

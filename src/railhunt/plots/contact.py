@@ -67,8 +67,29 @@ def contact_geometry_figure(geometry: ContactGeometry) -> Figure:
     fig.legend(handles=handles, loc="outside lower center", ncols=4, fontsize="small")
     p = g.params
     fig.suptitle(f"{p.get('wheel', '')} on {p.get('rail', '')}, inclination "
-                 f"{p.get('rail_inclination', 0):.4g}, gauge {p.get('gauge', 0) * 1e3:g} mm")
+                 f"{inclination_text(p.get('rail_inclination', 0.0))}, gauge "
+                 f"{p.get('gauge', 0) * 1e3:g} mm, {_conicity_text(g)}")  # fmt: skip
     return fig
+
+
+def inclination_text(tangent: float) -> str:
+    """A rail inclination as engineers write it: ``1:40`` for 0.025, ``none`` for 0
+    (a tangent that is not 1:n for a whole n is written as ``1:37.5``)."""
+    if not tangent:
+        return "none"
+    n = 1.0 / float(tangent)
+    return f"1:{n:.0f}" if abs(n - round(n)) < 1e-6 else f"1:{n:.3g}"
+
+
+def _conicity_text(g: ContactGeometry, amplitude: float = 3e-3) -> str:
+    """The EN 15302 equivalent conicity at ``amplitude`` (m), or why it has none."""
+    from railhunt.contact.conicity import ConicityError, equivalent_conicity
+
+    try:
+        value = equivalent_conicity(g.y, g.delta_r, amplitude)
+    except (ConicityError, ValueError):
+        return f"equivalent conicity at {amplitude * 1e3:g} mm: not defined"
+    return f"equivalent conicity {value:.3f} at {amplitude * 1e3:g} mm (EN 15302)"
 
 
 def plot_contact_geometry(geometry: ContactGeometry, path: str | os.PathLike[str]) -> Path:

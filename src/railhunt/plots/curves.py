@@ -118,14 +118,14 @@ def stability_map_figure(results: Any) -> Figure:
                     lw=0.9)  # fmt: skip
         missing = ~ok
         none = missing & np.array([s != "failed" for s in status])
-        if none.any():
-            ax.plot(x[none], np.full(int(none.sum()), 0.96 - 0.06 * n), ls="none",
-                    marker="^", color=colour, ms=7, transform=ax.get_xaxis_transform(),
-                    clip_on=False)  # fmt: skip
+        if none.any():  # above the top edge, off the speed scale: not a speed
+            ax.plot(x[none], np.full(int(none.sum()), 1.03 + 0.045 * n), ls="none",
+                    marker="^", color=colour, ms=7, mfc="none", mew=1.5,
+                    transform=ax.get_xaxis_transform(), clip_on=False)  # fmt: skip
             nothing = True
     if nothing:
-        ax.plot([], [], ls="none", marker="^", color="0.4", ms=7,
-                label="none found: stable at every speed tried")  # fmt: skip
+        ax.plot([], [], ls="none", marker="^", color="0.4", ms=7, mfc="none", mew=1.5,
+                label="none found (above the frame): stable at every speed tried")  # fmt: skip
     failed = np.array([s == "failed" for s in status])
     if failed.any():
         ax.plot(x[failed], np.full(int(failed.sum()), 0.03), ls="none", marker="x", color="r",
@@ -136,13 +136,17 @@ def stability_map_figure(results: Any) -> Figure:
         values = res.column("cant_m")
         cant = float(np.max(values)) if values.size else None
     g = float(meta.get("vehicle", {}).get("parameters", {}).get("g", 9.81))
+    reference = np.array([])
     if cant is not None and finite.any():
         grid = np.geomspace(low / 1.15, top * 1.15, 100)
-        ax.plot(grid, deficiency_speed_kmh(grid, float(cant), g=g), ls="--", color="0.5",
+        reference = deficiency_speed_kmh(grid, float(cant), g=g)
+        ax.plot(grid, reference, ls="--", color="0.5",
                 lw=1.2, label=f"cant deficiency {REFERENCE_DEFICIENCY * 1e3:.0f} mm "
                 f"(cant {float(cant) * 1e3:g} mm)")  # fmt: skip
     _radius_axis(ax, radius[finite], straight_x, bool((~finite).any()))
-    speeds = [res.column(c) for c, *_ in shown]
+    # The speed axis holds the critical speeds and the whole reference line (which in
+    # tight curves runs far below them).
+    speeds = [res.column(c) for c, *_ in shown] + [reference]
     finite_speeds = np.concatenate([s[np.isfinite(s)] for s in speeds]) if speeds else []
     if len(finite_speeds):
         ax.set_ylim(max(0.0, 0.8 * float(np.min(finite_speeds))),

@@ -42,6 +42,7 @@ def default_fmax(spec: Spectrogram, bands: list[Band] | None = None) -> float:
     """
     nyquist = float(spec.frequencies[-1])
     top = DEFAULT_FMAX
+    bands = [b for b in bands or [] if not b.no_signal]
     if bands:
         strongest = max(b.amplitude for b in bands)
         edges = [b.high for b in bands if b.amplitude >= _BAND_SHARE * strongest]
@@ -77,13 +78,17 @@ def spectrogram_figure(
                          cmap="viridis", vmin=0.0,
                          vmax=float(np.max(amp)) if amp.size and np.max(amp) > 0 else 1.0)
     fig.colorbar(mesh, ax=ax, label=f"amplitude{f' ({unit})' if unit else ''}")
-    for k, b in enumerate(bands or []):
+    heard = [b for b in bands or [] if not b.no_signal]
+    for k, b in enumerate(heard):
         ax.plot([b.start, b.end], [b.frequency, b.frequency], color=_BAND_COLOUR, lw=1.6,
                 ls="--", label="dominant frequency of each stretch" if k == 0 else None)
-    if bands:
-        strongest = max(bands, key=lambda b: b.amplitude)
+    if heard:
+        strongest = max(heard, key=lambda b: b.amplitude)
         ax.plot([], [], ls="none", label=f"strongest: {strongest.frequency:.3g} Hz, "
                 f"{strongest.start:.3g}-{strongest.end:.3g} s")  # fmt: skip
+    elif bands:
+        ax.plot([], [], ls="none", label="no signal: the record is constant")
+    if bands:
         ax.legend(loc="upper right", fontsize="small", framealpha=0.85)
     ax.set_xlabel("time (s)")
     ax.set_ylabel("frequency (Hz)")

@@ -80,8 +80,19 @@ def root_locus_figure(
         vmax=max(speeds.max(), speeds.min() + 1),
         linewidths=0,
     )
-    ax_r.plot(hunt.real, freq_h, "-o", color="tab:red", ms=3.5, lw=1.4, label="hunting mode")
+    # The hunting mode: a line through its eigenvalues, each marker coloured by its speed
+    # on the same scale as the others (so that a speed can be read off the mode itself).
+    ax_r.plot(hunt.real, freq_h, "-", color="tab:red", lw=1.2, zorder=2)
+    ax_r.scatter(hunt.real, freq_h, c=speeds, s=30, cmap="viridis", vmin=speeds.min(),
+                 vmax=max(speeds.max(), speeds.min() + 1), edgecolors="tab:red",
+                 linewidths=1.0, zorder=3, label="hunting mode (colour: speed)")  # fmt: skip
     ax_r.axvline(0.0, color="k", lw=0.8)
+    crossings = _zero_crossings(speeds, zeta, freq_h)
+    for k, (v, f, rising) in enumerate(crossings):
+        word = "unstable above" if rising else "stable again above"
+        ax_r.annotate(f"{v:.0f} km/h: {word}", (0.0, f), xytext=(12, -16 - 14 * (k % 2)),
+                      textcoords="offset points", fontsize="x-small", color="k",
+                      arrowprops={"arrowstyle": "-", "color": "0.4", "lw": 0.8})  # fmt: skip
 
     x_lo = min(-8.0, 2.0 * float(np.min(hunt.real)))
     x_hi = max(2.0, 1.5 * float(np.max(hunt.real)))
@@ -121,6 +132,10 @@ def root_locus_figure(
 
     ax_z.plot(speeds, zeta, "-o", color="tab:red", ms=3.5)
     ax_z.axhline(0.0, color="k", lw=0.8)
+    for v, _, rising in crossings:  # every zero crossing, the second one near 480 km/h too
+        ax_z.plot(v, 0.0, "D", color="k" if rising else "tab:green", ms=6, zorder=3)
+        ax_z.annotate(f"{v:.0f} km/h", (v, 0.0), xytext=(6, 6),
+                      textcoords="offset points", fontsize="x-small")  # fmt: skip
     if linear is not None and math.isfinite(linear.speed_kmh):
         ax_z.axvline(
             linear.speed_kmh,
@@ -135,6 +150,20 @@ def root_locus_figure(
     ax_z.set_title("hunting mode damping (< 0: hunting grows)")
     ax_z.grid(True, alpha=0.3)
     return fig
+
+
+def _zero_crossings(speeds: np.ndarray, zeta: np.ndarray,
+                    freq: np.ndarray) -> list[tuple[float, float, bool]]:  # fmt: skip
+    """Speeds (km/h) where the hunting damping ratio crosses zero, by linear
+    interpolation, with the frequency (Hz) there and whether it turns unstable."""
+    out = []
+    for i in range(zeta.size - 1):
+        a, b = zeta[i], zeta[i + 1]
+        if np.isfinite(a) and np.isfinite(b) and (a > 0) != (b > 0) and a != b:
+            w = a / (a - b)
+            out.append((float(speeds[i] + w * (speeds[i + 1] - speeds[i])),
+                        float(freq[i] + w * (freq[i + 1] - freq[i])), bool(b < a)))  # fmt: skip
+    return out
 
 
 #: What the amplitude axis of a bifurcation diagram shows: the leading wheelset's lateral
@@ -234,8 +263,13 @@ def _draw_diagram(ax: Axes, d: BifurcationDiagram, wheelset: str, lw: float) -> 
         amp = branch_amplitude(branch, wheelset) * 1e3
         for first, last, stable in branch.segments():
             sl = slice(first, last + 1)
-            ax.plot(branch.speed_kmh[sl], amp[sl], "-" if stable else "--", color=c,
-                    lw=lw if stable else lw * 0.6)  # fmt: skip
+            if stable:
+                ax.plot(branch.speed_kmh[sl], amp[sl], "-", color=c, lw=lw)
+            else:  # dashed and thin with open circles: told apart where branches run close
+                n_pts = last + 1 - first
+                ax.plot(branch.speed_kmh[sl], amp[sl], ls=(0, (3, 2)), color=c, lw=lw * 0.5,
+                        marker="o", ms=1.6 * lw, mfc="white", mew=0.6 * lw,
+                        markevery=max(1, n_pts // 20))  # fmt: skip
     ax.plot([hopf], [0], "o", color="C3", ms=4 * lw, zorder=5, clip_on=False)
 
 
@@ -258,7 +292,7 @@ def bifurcation_figure(
         c = _BRANCH_COLOURS[n % len(_BRANCH_COLOURS)]
         handles.append(Line2D([], [], color=c, lw=2,
                               label=f"{_branch_name(diagram, n)}: stable (solid) / unstable "
-                              "(dashed)"))  # fmt: skip
+                              "(dashed, open circles)"))  # fmt: skip
     handles.append(Line2D([], [], ls="none", marker="o", color="C3", ms=8,
                           label=f"Hopf point A, V_lim = {hopf:.1f} km/h"))  # fmt: skip
     for branch in diagram.branches:

@@ -17,6 +17,8 @@ import math
 import os
 import signal
 import socket
+import struct
+import time
 import warnings
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import ExitStack, contextmanager
@@ -61,7 +63,11 @@ def default_workers() -> int:
 
 
 def check_workers(workers: int | None) -> int:
-    """Validate a number of worker processes.
+    """Validate a number of worker processes and cap it at the cores.
+
+    A point is single-threaded and compute-bound: more worker processes than cores only
+    share the same cores (each with its own memory and compiled code), so a larger
+    request is capped at :func:`default_workers` (:func:`capped_workers` says when).
 
     Parameters
     ----------
@@ -71,13 +77,23 @@ def check_workers(workers: int | None) -> int:
     Returns
     -------
     int
-        The number of workers, in [1, 1024].
+        The number of workers, in [1, cores].
     """
     if workers is None:
         return default_workers()
     if isinstance(workers, bool) or int(workers) != workers or not 1 <= workers <= 1024:
         raise ValueError(f"workers = {workers!r} is invalid: must be an integer in [1, 1024]")
-    return int(workers)
+    return min(int(workers), default_workers())
+
+
+def capped_workers(workers: int | None) -> str | None:
+    """Why ``workers`` processes will not all start (None when they will): the cap of
+    :func:`check_workers`, in one sentence."""
+    cores = default_workers()
+    if workers is None or workers <= cores:
+        return None
+    return (f"{workers} workers asked, {cores} started: this machine has {cores} cores and "
+            "each point keeps one core busy, so more processes would only share them")
 
 
 def local_cluster(workers: int) -> Any:
@@ -189,40 +205,142 @@ def probe_scheduler(address: str, timeout: float) -> None:
                              f"({exc.strerror or exc})") from None  # fmt: skip
 
 
-def join_scheduler(address: str, timeout: float = CONNECT_TIMEOUT) -> Any:
-    """A ``dask.distributed.Client`` joined to the scheduler at ``address``.
+#: The largest first message (bytes) a Dask scheduler's handshake can be; a larger length
+#: is another protocol's bytes read as a frame size.
+_HANDSHAKE_MAX = 1 << 20
+#: How long (s) a scheduler without workers is given to get one, unless told to wait.
+WORKER_WAIT = 5.0
+
+
+def _recv_exactly(sock: socket.socket, n: int, deadline: float) -> bytes:
+    buf = bytearray()
+    while len(buf) < n:
+        left = deadline - time.monotonic()
+        if left <= 0:
+            raise TimeoutError
+        sock.settimeout(left)
+        chunk = sock.recv(min(n - len(buf), 65536))
+        if not chunk:
+            raise ConnectionResetError("the server closed the connection")
+        buf += chunk
+    return bytes(buf)
+
+
+def probe_handshake(address: str, timeout: float) -> None:
+    """Read the handshake a Dask scheduler sends as soon as it accepts a connection, within
+    ``timeout`` s, and check that it is one (``tcp://`` addresses; others are left to Dask).
+
+    Dask's own client waits for that handshake without a time limit, so a server that
+    accepts and stays silent (a busy port of another program, an HTTP server waiting for
+    its request) would hold it forever.
+
+    Raises
+    ------
+    SchedulerError
+        Silent for ``timeout`` s, closed, or answering in another protocol.
+    """
+    scheme, sep, rest = address.partition("://")
+    if sep and scheme != "tcp":
+        return
+    host, _, port = (rest if sep else address).rpartition(":")
+    host = host.strip("[]")
+    where = f"{host}:{port}"
+    deadline = time.monotonic() + timeout
+    try:
+        with socket.create_connection((host, int(port)), timeout=timeout) as sock:
+            (size,) = struct.unpack("<Q", _recv_exactly(sock, 8, deadline))
+            if not 0 < size <= _HANDSHAKE_MAX:
+                raise SchedulerError(f"{where} is not a Dask scheduler (it answered in "
+                                     "another protocol)")  # fmt: skip
+            body = _recv_exactly(sock, size, deadline)
+    except TimeoutError:
+        raise SchedulerError(f"{where} accepted the connection but sent no Dask handshake "
+                             f"within {timeout:g} s: not a Dask scheduler (another server "
+                             "on that port?), or one too busy to answer; check the address "
+                             "or raise --connect-timeout") from None  # fmt: skip
+    except OSError as exc:
+        raise SchedulerError(f"{where} closed the connection before a Dask handshake "
+                             f"({exc.strerror or exc}): not a Dask scheduler") \
+            from None  # fmt: skip
+    try:
+        from distributed.protocol.core import loads
+        from distributed.protocol.utils import unpack_frames
+
+        message = loads(unpack_frames(body), deserialize=False)
+    except Exception:  # noqa: BLE001 - any failure to decode means another protocol
+        message = None
+    if not isinstance(message, dict):
+        raise SchedulerError(f"{where} is not a Dask scheduler (it answered in another "
+                             "protocol)")  # fmt: skip
+
+
+def await_workers(client: Any, address: str, wait: bool | float = False) -> int:
+    """The number of workers of the scheduler ``client`` is joined to, after waiting for
+    a first one: :data:`WORKER_WAIT` s, forever with ``wait=True``, or ``wait`` s.
+
+    Raises
+    ------
+    SchedulerError
+        No worker joined in time (the tasks would wait for one forever).
+    """
+    limit = None if wait is True else (WORKER_WAIT if wait is False else float(wait))
+    try:
+        client.wait_for_workers(1, timeout=limit)
+    except (TimeoutError, OSError):
+        raise SchedulerError(f"the Dask scheduler at {address} has no workers (none joined "
+                             f"within {limit:g} s): start some ('dask worker {address}'), or "
+                             "wait for them (--wait-for-workers, wait_for_workers=True)") \
+            from None  # fmt: skip
+    return len(client.scheduler_info().get("workers", {}))
+
+
+def join_scheduler(address: str, timeout: float = CONNECT_TIMEOUT, *,
+                   wait_for_workers: bool | float = False) -> Any:  # fmt: skip
+    """A ``dask.distributed.Client`` joined to the scheduler at ``address``, with workers.
 
     Parameters
     ----------
     address : str
         ``tcp://HOST:PORT`` (or another scheme Dask knows).
     timeout : float
-        Connect timeout (s), in (0, 3600].
+        Connect timeout (s), in (0, 3600]: it bounds the connection and the handshake.
+    wait_for_workers : bool or float
+        A scheduler without workers is an error after :data:`WORKER_WAIT` s (or
+        ``timeout``, if shorter); True waits for a first worker as long as it takes, a
+        number waits that many seconds.
 
     Raises
     ------
     SchedulerError
-        Nothing listens there, no answer within ``timeout``, or the server is not a Dask
-        scheduler (it answers in another protocol, which Dask misreads as a frame size
-        of exabytes).
+        Nothing listens there, no answer within ``timeout``, the server is not a Dask
+        scheduler (it stays silent, or answers in another protocol), or no worker joined.
     """
     from distributed import Client
 
     timeout = check_connect_timeout(timeout)
     probe_scheduler(address, timeout)
+    probe_handshake(address, timeout)
     try:
-        return Client(address, timeout=f"{timeout}s")
+        client = Client(address, timeout=f"{timeout}s")
     except (MemoryError, ValueError, TypeError, KeyError, EOFError) as exc:
         raise SchedulerError(f"{address} is not a Dask scheduler (it answered in another "
                              f"protocol: {type(exc).__name__})") from None  # fmt: skip
     except OSError as exc:  # Dask's own connect timeout, or a closed connection
         raise SchedulerError(f"no Dask scheduler answered at {address} within {timeout:g} s "
                              f"({' '.join(str(exc).split())[:120]})") from None  # fmt: skip
+    if wait_for_workers is False:
+        wait_for_workers = min(WORKER_WAIT, timeout)
+    try:
+        await_workers(client, address, wait_for_workers)
+    except BaseException:
+        _close_quietly(client)
+        raise
+    return client
 
 
 @contextmanager
-def open_client(scheduler: str | None, workers: int,
-                timeout: float | str = CONNECT_TIMEOUT) -> Iterator[Any]:  # fmt: skip
+def open_client(scheduler: str | None, workers: int, timeout: float | str = CONNECT_TIMEOUT,
+                wait_for_workers: bool | float = False) -> Iterator[Any]:  # fmt: skip
     """A ``dask.distributed.Client``, closed on exit: joined to ``scheduler``
     (:func:`join_scheduler`), or else on a new :func:`local_client` of ``workers`` processes.
 
@@ -235,6 +353,8 @@ def open_client(scheduler: str | None, workers: int,
     timeout : float or str
         How long to try to reach ``scheduler`` (s; or Dask's duration text such as
         ``"10s"``) before :class:`SchedulerError`.
+    wait_for_workers : bool or float
+        See :func:`join_scheduler`.
     """
     if scheduler is None:
         with local_client(workers) as client:
@@ -242,7 +362,7 @@ def open_client(scheduler: str | None, workers: int,
         return
     if isinstance(timeout, str):
         timeout = float(timeout.strip().rstrip("s"))
-    client = join_scheduler(scheduler, timeout)
+    client = join_scheduler(scheduler, timeout, wait_for_workers=wait_for_workers)
     try:
         yield client
     finally:

@@ -29,7 +29,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from railhunt import paper2019
+import railhunt.paper2019 as paper2019
 from railhunt.paper2019 import NO_BLOWOFF as NO_BLOWOFF
 from railhunt.studies.records import Context, Headline, Report, Settings, Step, show
 from railhunt.studies.reproduce_curves import curves
@@ -98,7 +98,7 @@ def reproduce(
     -------
     Report
     """
-    import railhunt
+    from railhunt._version import __version__
     from railhunt.provenance import vehicle_fingerprint
     from railhunt.studies.report import write_html
 
@@ -131,7 +131,7 @@ def reproduce(
         except Exception:  # noqa: BLE001 - only for the report's header
             workers = 0
     report = Report(out, out / "report.html", out / "headline.json", steps, vehicle.name,
-                    railhunt.__version__, started, settings != Settings(),
+                    __version__, started, settings != Settings(),
                     time.perf_counter() - t_start, workers,
                     vehicle_fingerprint(vehicle))  # fmt: skip
     report.json.write_text(json.dumps(report.to_dict(), indent=2, ensure_ascii=False) + "\n",

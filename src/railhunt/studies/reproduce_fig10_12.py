@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from railhunt import paper2019
+import railhunt.paper2019 as paper2019
 from railhunt.studies.records import (
     Context,
     Headline,

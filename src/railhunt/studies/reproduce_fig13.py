@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from railhunt import paper2019
+import railhunt.paper2019 as paper2019
 from railhunt.paper2019 import NO_BLOWOFF
 from railhunt.studies.records import Context, Step, claim
 

@@ -19,7 +19,7 @@ import time
 
 import numpy as np
 
-from railhunt import paper2019
+import railhunt.paper2019 as paper2019
 from railhunt.studies.records import Context, Step, claim, compare, compare_within
 
 __all__ = ["fig6", "fig7", "fig8", "peak_period"]

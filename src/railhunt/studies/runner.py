@@ -10,11 +10,12 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Sequence
+from contextlib import ExitStack
 from pathlib import Path
 from typing import Any
 
-from railhunt.studies.execute import CONNECT_TIMEOUT, progress_bar, run_tasks
-from railhunt.studies.store import ResultStore, SweepResults
+from railhunt.studies.execute import CONNECT_TIMEOUT, open_client, progress_bar, run_tasks
+from railhunt.studies.store import ResultFileError, ResultStore, SweepResults
 
 
 def run_study(
@@ -32,6 +33,7 @@ def run_study(
     progress: bool | Callable[[int, int], None] = False,
     warm_up: Callable[[], None] | None = None,
     connect_timeout: float = CONNECT_TIMEOUT,
+    wait_for_workers: bool | float = False,
 ) -> SweepResults:
     """Run ``task`` on every point a results file does not hold yet.
 
@@ -56,12 +58,37 @@ def run_study(
         work to do).
     connect_timeout : float
         How long to try to reach ``scheduler`` (s).
+    wait_for_workers : bool or float
+        With ``scheduler``: wait for a first worker (True: as long as it takes; a number:
+        that many seconds); by default a scheduler without workers is an error after a
+        few seconds (:func:`railhunt.studies.execute.join_scheduler`).
+
+    The scheduler is joined and the results file's folder checked before anything is
+    created: a wrong address or folder leaves no file behind.
 
     Returns
     -------
     SweepResults
         Rows sorted by point, with the counts computed/resumed/lost and the wall time.
     """
+    if out and not Path(out).parent.is_dir():
+        raise ResultFileError(f"{out}: folder {str(Path(out).parent)!r} does not exist; "
+                              "create it first or choose another file")  # fmt: skip
+    with ExitStack() as stack:
+        if client is None and scheduler is not None:
+            client = stack.enter_context(open_client(scheduler, 1, connect_timeout,
+                                                     wait_for_workers))  # fmt: skip
+            scheduler = None
+        return _run(points, task, meta, label=label, out=out, resume=resume,
+                    overwrite=overwrite, client=client, workers=workers, progress=progress,
+                    warm_up=warm_up)  # fmt: skip
+
+
+def _run(points: Sequence[tuple[int, Any]], task: Callable[[Any], dict[str, Any]],
+         meta: dict[str, Any], *, label: str, out: str | Path | None, resume: bool,
+         overwrite: bool, client: Any, workers: int | None,
+         progress: bool | Callable[[int, int], None],
+         warm_up: Callable[[], None] | None) -> SweepResults:  # fmt: skip
     start = time.perf_counter()
     store = ResultStore(out, meta, resume=resume, overwrite=overwrite) if out else None
     rows: dict[int, dict[str, Any]] = dict(store.rows) if store else {}
@@ -86,8 +113,7 @@ def run_study(
     lost: list[tuple[Any, str]] = []
     complete = False
     try:
-        lost = run_tasks(task, todo, on_result, client=client, scheduler=scheduler,
-                         workers=workers, connect_timeout=connect_timeout,
+        lost = run_tasks(task, todo, on_result, client=client, workers=workers,
                          warm_up=warm_up if todo else None)  # fmt: skip
         complete = len(rows) == total
     finally:

@@ -129,6 +129,7 @@ def stability_map(
     workers: int | None = None,
     progress: bool | Callable[[int, int], None] = False,
     connect_timeout: float = CONNECT_TIMEOUT,
+    wait_for_workers: bool | float = False,
 ) -> SweepResults:
     """Linear and nonlinear critical speed of a vehicle in curves of several radii.
 
@@ -157,6 +158,8 @@ def stability_map(
         finish, resumable; Dask cluster or local workers; progress bar or callback.
     connect_timeout : float
         As for :func:`railhunt.sweep`: how long to try to reach ``scheduler`` (s).
+    wait_for_workers : bool or float
+        As for :func:`railhunt.sweep`: wait for the scheduler's first worker.
 
     Returns
     -------
@@ -191,7 +194,8 @@ def stability_map(
     return run_study([(i, (i, r)) for i, r in enumerate(radii)], task, meta,
                      label="stability map", out=out, resume=resume, overwrite=overwrite,
                      client=client, scheduler=scheduler, workers=workers, progress=progress,
-                     warm_up=_warm_up, connect_timeout=connect_timeout)  # fmt: skip
+                     warm_up=_warm_up, connect_timeout=connect_timeout,
+                     wait_for_workers=wait_for_workers)  # fmt: skip
 
 
 def _describe(vehicle: Vehicle, radii: list[float], cant: float,
@@ -199,8 +203,8 @@ def _describe(vehicle: Vehicle, radii: list[float], cant: float,
               excitation: object, creep_law: str,
               param_cols: list[str]) -> dict[str, Any]:  # fmt: skip
     """The study description (sidecar); its fingerprint decides whether a file resumes."""
-    from railhunt import __version__
     from railhunt._cache import source_hash
+    from railhunt._version import __version__
     from railhunt.provenance import provenance, vehicle_block
 
     meta: dict[str, Any] = {

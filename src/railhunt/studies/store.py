@@ -401,7 +401,9 @@ class ResultStore:
         if exists and not resume:
             for p in (self.path, self.journal):
                 p.unlink(missing_ok=True)
-        self.path.parent.mkdir(parents=True, exist_ok=True)
+        if not self.path.parent.is_dir():
+            raise ResultFileError(f"{self.path}: folder {str(self.path.parent)!r} does not "
+                                  "exist; create it first or choose another file")  # fmt: skip
         self.created = not self.journal.exists()
         self._fh = open(self.journal, "a", encoding="utf-8", newline="")  # noqa: SIM115
         try:  # one writer per file: a second sweep on it would duplicate points

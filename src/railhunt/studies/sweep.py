@@ -181,6 +181,7 @@ def sweep(
     workers: int | None = None,
     progress: bool | Callable[[int, int], None] = False,
     connect_timeout: float = CONNECT_TIMEOUT,
+    wait_for_workers: bool | float = False,
 ) -> SweepResults:
     """Run a parameter study: critical speeds and hunting frequency at every point.
 
@@ -232,6 +233,9 @@ def sweep(
         How long to try to reach ``scheduler`` (s), in (0, 3600]; a refused port, a
         server that is not a Dask scheduler or no answer in time raise
         :class:`railhunt.studies.execute.SchedulerError` (an ``OSError``).
+    wait_for_workers : bool or float
+        With ``scheduler``: a scheduler without workers is an error after a few seconds;
+        True waits for a first worker as long as it takes, a number that many seconds.
     workers : int, optional
         Worker processes of the local cluster (default: all cores; 1 runs in this process).
     progress : bool or callable
@@ -277,7 +281,8 @@ def sweep(
     return run_study([(p.index, (p, speeds[p.index])) for p in points], task, meta,
                      label="sweep", out=out, resume=resume, overwrite=overwrite, client=client,
                      scheduler=scheduler, workers=workers, progress=progress,
-                     warm_up=warm_up, connect_timeout=connect_timeout)  # fmt: skip
+                     warm_up=warm_up, connect_timeout=connect_timeout,
+                     wait_for_workers=wait_for_workers)  # fmt: skip
 
 
 def _describe(vehicle: Vehicle, parameters: Mapping[str, object], outputs: tuple[str, ...],
@@ -292,8 +297,8 @@ def _describe(vehicle: Vehicle, parameters: Mapping[str, object], outputs: tuple
     contact description (not its name), the design and its points' resolved options, and
     only the options the chosen outputs use.
     """
-    from railhunt import __version__
     from railhunt._cache import source_hash
+    from railhunt._version import __version__
     from railhunt.provenance import provenance, vehicle_block
 
     names = list(parameters)

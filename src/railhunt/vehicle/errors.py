@@ -89,9 +89,17 @@ class UnknownParameterError(ParameterError):
 
     def __init__(self, parameter: str, value: object = None,
                  known: tuple[str, ...] | None = None) -> None:  # fmt: skip
-        from railhunt.vehicle.parameters import PARAMETERS, suggest
+        from railhunt.vehicle.parameters import DERIVED, PARAMETERS, suggest
 
         suggestions = suggest(parameter, known)
+        if parameter in DERIVED:  # a derived quantity is known, just not settable
+            spec = DERIVED[parameter]
+            super().__init__(parameter, value, "a parameter, not a derived quantity", None,
+                             message=f"{parameter} is derived, not a parameter: {parameter} "
+                             f"= {spec.formula} ({spec.meaning}, {spec.unit}); vary "
+                             f"{spec.change_instead} instead")  # fmt: skip
+            self.suggestions = suggestions
+            return
         if suggestions:
             quoted = [repr(s) for s in suggestions]
             options = quoted[0] if len(quoted) == 1 else f"{', '.join(quoted[:-1])} or {quoted[-1]}"

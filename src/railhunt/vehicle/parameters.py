@@ -283,6 +283,7 @@ def suggest(name: str, known_names: object = None) -> tuple[str, ...]:
         Up to a few parameter or derived names; may be empty.
     """
     known = [*PARAMETERS, *DERIVED] if known_names is None else list(known_names)
+    known = [k for k in known if k != name]
     exact_case = [k for k in known if k.lower() == name.lower()]
     close = difflib.get_close_matches(name, known, n=3, cutoff=0.6)
     return tuple(dict.fromkeys([*exact_case, *close]))

@@ -192,6 +192,6 @@ def _announce_diagrams(vehicle: Any, from_kmh: float, to_kmh: float, count: int)
 
     with user_input("--set/--vehicle: "):
         step = auto_step(Model(vehicle), kmh_to_ms(to_kmh))
-    per = (to_kmh - from_kmh) * SIMULATED_SECONDS["bifurcation km/h"]
+    per = SIMULATED_SECONDS["bifurcation diagram"]
     what = f"{count} diagram{'s' if count > 1 else ''} over {to_kmh - from_kmh:g} km/h"
-    announce(workload(count * per, step, what))
+    announce(workload(count * per, step, what), vehicle, kmh_to_ms(to_kmh))

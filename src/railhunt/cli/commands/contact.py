@@ -9,6 +9,7 @@ from pathlib import Path
 import click
 
 from railhunt.cli.errors import CliError, user_input
+from railhunt.cli.files import OutputPath
 from railhunt.cli.options import check_outputs, number_range, overwrite_option, write_sidecar
 from railhunt.cli.output import announce, command_record, json_safe, traced
 from railhunt.cli.rules import Ordered, command
@@ -70,9 +71,9 @@ RULES = (
 @click.option("--amplitude", default=3.0, show_default=True, metavar="MM",
               callback=number_range("mm", 0.0, 30.0),
               help="Amplitude of the equivalent conicity reported (mm).")
-@click.option("--png", "png_file", type=click.Path(dir_okay=False, path_type=Path),
+@click.option("--png", "png_file", type=OutputPath(),
               help="Plot r_L, r_R, delta r, contact angles, roll and contact points.")
-@click.option("--csv", "csv_file", type=click.Path(dir_okay=False, path_type=Path),
+@click.option("--csv", "csv_file", type=OutputPath(),
               help="Write the table (mm, rad, mrad).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (SI units).")
 @overwrite_option

@@ -195,13 +195,13 @@ def critical_speed_command(
         title=f"critical speed trials of {vehicle.name} "
         f"({amplitude:g} mm x {wavelength:g} m defect, {method}){where}"
     )
-    for head in (
+    for head in (  # short heads: the table fits in 80 columns
         "#",
-        "speed (km/h)",
+        "km/h",
         "verdict",
-        "amplitude (mm)",
-        "growth (1/s)",
-        "simulated (s)",
+        "amp. mm",
+        "growth 1/s",
+        "run s",
         "note",
     ):
         table.add_column(head, justify="left" if head in ("verdict", "note") else "right")
@@ -255,8 +255,18 @@ def _above_linear(result: Any, linear: Any) -> bool:
 
 def _announce_search(vehicle: Any, excitation: Any, start_kmh: float, step_kmh: float,
                      tol_kmh: float, dt: float | None) -> None:  # fmt: skip
-    """Refuse a stiff damper's step, and announce a search of more than a minute."""
+    """Refuse invalid search settings and a stiff damper's step (before any estimate),
+    and announce a search of more than a minute."""
+    import inspect
     import math
+
+    from railhunt.analysis.critical import critical_speed
+    from railhunt.analysis.search import check_search
+
+    bounds = inspect.signature(critical_speed).parameters
+    with user_input():
+        check_search(start_kmh, step_kmh, tol_kmh, bounds["min_kmh"].default,
+                     bounds["max_kmh"].default)  # fmt: skip
 
     from railhunt import Model
     from railhunt.analysis.critical import Judgement
@@ -275,7 +285,7 @@ def _announce_search(vehicle: Any, excitation: Any, start_kmh: float, step_kmh: 
     most = (max(start_kmh - 20.0, 800.0 - start_kmh) / step_kmh + 1 + bisect) * (
         t_exc + Judgement().max_duration)
     announce(workload(trials * per_trial, step, f"~{trials} trials of ~{per_trial:.0f} s "
-                      "simulated", most_simulated=most))  # fmt: skip
+                      "simulated", most_simulated=most), vehicle, kmh_to_ms(start_kmh))  # fmt: skip
 
 
 def _nonlinear_line(result: Any, tol_kmh: float) -> str:

@@ -125,7 +125,8 @@ def _curve_entry(vehicle: Any, speed: float, curve: Any, png_file: Path) -> dict
 
     with user_input("--set/--vehicle: "):
         step = auto_step(Model(vehicle), kmh_to_ms(speed))
-    announce(workload(duration, step, f"the curve entry, {duration:.1f} s simulated"))
+    announce(workload(duration, step, f"the curve entry, {duration:.1f} s simulated"), vehicle,
+             kmh_to_ms(speed))  # fmt: skip
     with spinner(f"simulating the curve entry ({duration:.1f} s) ..."), user_input():
         run = simulate(vehicle, speed, duration=duration, curve=curve)
     with spinner("plotting ..."), user_input("cannot write --png: "):

@@ -62,7 +62,8 @@ def frequency_command(from_kmh: float, to_kmh: float, step_kmh: float, initial_m
     model = Model(vehicle)
     with user_input("--set/--vehicle: "):
         dt = auto_step(model, kmh_to_ms(to_kmh))
-    announce(workload(n * SIMULATED_SECONDS["frequency speed"], dt, f"{n} speeds"))
+    announce(workload(n * SIMULATED_SECONDS["frequency speed"], dt, f"{n} speeds"), vehicle,
+             kmh_to_ms(to_kmh))  # fmt: skip
     speeds = from_kmh + step_kmh * np.arange(n)
     results = []
     with spinner("simulating speeds"):
@@ -78,10 +79,15 @@ def frequency_command(from_kmh: float, to_kmh: float, step_kmh: float, initial_m
     if damper_png is not None:
         from railhunt.plots import plot_damper_velocity
 
-        pick = next((r for r in results if frequency_kind(r.source) == "limit-cycle"),
-                    results[-1])  # fmt: skip
+        pick = next((r for r in results if frequency_kind(r.source) == "limit-cycle"), None)
+        title = None if pick is None else f"{pick.speed_kmh:g} km/h, {pick.verdict}"
+        if pick is None:  # say so, in the figure and here, instead of a quiet stable run
+            pick = results[-1]
+            title = (f"no limit cycle in {speeds[0]:g}-{speeds[-1]:g} km/h: shown is the "
+                     f"highest speed, {pick.speed_kmh:g} km/h, {pick.verdict}")  # fmt: skip
+            click.echo(f"railhunt: note: --damper-png: {title}", err=True)
         plot_damper_velocity(pick.t, pick.y, pick.damper_velocity, pick.blowoff_velocity,
-                             damper_png, f"{pick.speed_kmh:g} km/h, {pick.verdict}")  # fmt: skip
+                             damper_png, title)  # fmt: skip
     if as_json:
         data = {
             "vehicle": vehicle.name,

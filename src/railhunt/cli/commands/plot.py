@@ -7,6 +7,7 @@ from pathlib import Path
 import click
 
 from railhunt.cli.errors import CliError
+from railhunt.cli.files import OutputPath
 from railhunt.cli.options import check_outputs, load_results, overwrite_option, results_argument
 from railhunt.cli.output import stdout_console
 from railhunt.cli.rules import command
@@ -14,7 +15,7 @@ from railhunt.cli.rules import command
 
 @command("plot", short_help="Draw V_cr and frequency against swept parameters (Figs. 10, 11).")
 @results_argument
-@click.option("--out", "out_file", type=click.Path(dir_okay=False, path_type=Path),
+@click.option("--out", "out_file", type=OutputPath(),
               required=True, metavar="FILE", help="Figure to write (PNG, PDF, SVG ...).")
 @click.option("--parameter", "parameters", multiple=True, metavar="NAME",
               help="Draw only this line (repeatable, in this order). Default: every line "

@@ -10,10 +10,16 @@ from typing import Any
 import click
 
 from railhunt.cli.errors import CliError
+from railhunt.cli.files import OutputPath
 from railhunt.cli.options import check_output_folder, overwrite_option
 from railhunt.cli.output import show_progress, spinner, stdout_console
 from railhunt.cli.rules import Excludes, command
-from railhunt.cli.study import CONNECT_RULE, connect_timeout_option, scheduler_client
+from railhunt.cli.study import (
+    CONNECT_RULE,
+    check_workers_option,
+    connect_timeout_option,
+    scheduler_client,
+)
 
 RULES = (Excludes("--scheduler", "--workers", "give either {a} or {b}, not both"),
          CONNECT_RULE)
@@ -96,7 +102,7 @@ def _difference_style(agrees: bool | None) -> str:
 @command("reproduce", rules=RULES,
          short_help="Recompute the paper's Figs. 6-8, 10-13 into an HTML report.")
 @click.option("--out", "out_dir", required=True, metavar="DIR",
-              type=click.Path(file_okay=False, path_type=Path),
+              type=OutputPath(folder=True),
               help="Folder for report.html, headline.json and the figures (created if "
               "missing; files of an earlier run are replaced only with --overwrite).")
 @click.option("--quick", is_flag=True,
@@ -132,6 +138,7 @@ def reproduce_command(out_dir: Path, quick: bool, scheduler: str | None,
     from railhunt.studies.reproduce import OUTPUT_FILES
 
     check_output_folder("--out", out_dir, OUTPUT_FILES, overwrite)
+    check_workers_option(workers)
     try:
         out_dir.mkdir(parents=True, exist_ok=True)
     except OSError as exc:

@@ -264,7 +264,8 @@ def _check_work(vehicle: Any, speed: float, duration: float, method: str, dt: fl
                        f"the {exc.available / 1e9:.3g} GB of memory available; give {hint} "
                        "(--output-step) or a shorter --duration") from None
     if method == "rk4":
-        announce(workload(duration, step, f"{duration:g} s simulated"))
+        announce(workload(duration, step, f"{duration:g} s simulated"), vehicle,
+                 kmh_to_ms(speed))  # fmt: skip
 
 
 def _print_criterion(result: Any, vehicle: Any) -> None:

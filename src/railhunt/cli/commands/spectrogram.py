@@ -79,10 +79,11 @@ def spectrogram_command(
 
     \b
     FILE.csv has a header row, a time column named 't' or 'time' (s, e.g.
-    't [s]') and the signal in the column given by --channel (any unit, e.g.
-    a car-body or bogie-frame acceleration in m/s^2, or a channel of
-    'railhunt simulate --csv'). The record must be uniformly sampled and hold
-    at least two windows. Hann windows of --window s overlap by 75 %.
+    't [s]'; 't [ms]' and 't [min]' are converted) and the signal in the
+    column given by --channel (any unit, e.g. a car-body or bogie-frame
+    acceleration in m/s^2, or a channel of 'railhunt simulate --csv'). The
+    record must be uniformly sampled and hold at least two windows. Hann
+    windows of --window s overlap by 75 %.
 
     \b
     Prints the dominant frequency band over time: stretches where the
@@ -112,7 +113,8 @@ def spectrogram_command(
             "resolution_hz": spec.resolution,
             "bands": [
                 {"start_s": b.start, "end_s": b.end, "frequency_hz": b.frequency,
-                 "low_hz": b.low, "high_hz": b.high, "amplitude": b.amplitude}
+                 "low_hz": b.low, "high_hz": b.high, "amplitude": b.amplitude,
+                 "no_signal": b.no_signal}
                 for b in bands
             ],  # fmt: skip
         }
@@ -128,15 +130,25 @@ def spectrogram_command(
                      f"peak amplitude{f' ({unit})' if unit else ''}"):  # fmt: skip
             table.add_column(head, justify="right")
         for b in bands:
-            table.add_row(f"{b.start:.2f}", f"{b.end:.2f}", f"{b.frequency:.3g}",
-                          f"{b.low:.3g}-{b.high:.3g}", f"{b.amplitude:.4g}")  # fmt: skip
+            if b.no_signal:
+                table.add_row(f"{b.start:.2f}", f"{b.end:.2f}", "no signal", "-", "0")
+            else:
+                table.add_row(f"{b.start:.2f}", f"{b.end:.2f}", f"{b.frequency:.3g}",
+                              f"{b.low:.3g}-{b.high:.3g}", f"{b.amplitude:.4g}")  # fmt: skip
         stdout_console().print(table)
-        strongest = max(bands, key=lambda b: b.amplitude)
-        stdout_console().print(
-            f"strongest: {strongest.frequency:.3g} Hz between {strongest.start:.2f} s and "
-            f"{strongest.end:.2f} s (peak amplitude {strongest.amplitude:.4g}"
-            f"{f' {unit}' if unit else ''})"
-        )
+        heard = [b for b in bands if not b.no_signal]
+        if not heard:
+            stdout_console().print(
+                f"no signal: {escape(name)} is constant over the whole record (no vibration, "
+                "so no dominant frequency)"
+            )
+        else:
+            strongest = max(heard, key=lambda b: b.amplitude)
+            stdout_console().print(
+                f"strongest: {strongest.frequency:.3g} Hz between {strongest.start:.2f} s and "
+                f"{strongest.end:.2f} s (peak amplitude {strongest.amplitude:.4g}"
+                f"{f' {unit}' if unit else ''})"
+            )
     if png_file is not None:
         with user_input("cannot write --png: "):
             plot_spectrogram(spec, png_file, title=f"STFT of {name}", unit=unit, bands=bands,

@@ -175,4 +175,4 @@ def _announce_runs(vehicle: Any, length: float, start_kmh: float, step_kmh: floa
     trials = 3 + math.ceil(math.log2(max(step_kmh / tol_kmh, 1.0)))
     per_trial = length / kmh_to_ms(start_kmh)
     announce(workload(trials * per_trial, step, f"~{trials} runs of {per_trial:.0f} s over "
-                      f"{length:g} m of track"))  # fmt: skip
+                      f"{length:g} m of track"), vehicle, kmh_to_ms(start_kmh))  # fmt: skip

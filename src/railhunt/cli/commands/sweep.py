@@ -254,6 +254,11 @@ def _announce(vehicle, parameters, design, samples, seed, ties, outputs, workers
     announce_study(vehicle, points, outputs, workers, scheduler)
 
 
+#: The words of the summary table (the file keeps the full ones).
+_SOURCE = {"limit-cycle": "cycle", "eigenvalue": "eigen"}
+_STATUS = {"no-critical-speed": "none"}
+
+
 def _print_summary(result, out: Path) -> None:
     from rich.table import Table
 
@@ -273,10 +278,11 @@ def _print_summary(result, out: Path) -> None:
         ("linear_frequency_hz", "f_lin Hz", ".2f"),
         ("hunting_frequency_hz", "f Hz", ".2f")) if c in cols]  # fmt: skip
     source = "frequency_source" in cols
-    for head in (*params, *(h for _, h, _ in shown), *(["source"] if source else []), "status"):
+    for head in (*params, *(h for _, h, _ in shown), *(["f from"] if source else []), "status"):
         table.add_column(head, justify="right")
-    for row in result.rows:
-        table.add_row(*(f"{row[p]:.6g}" for p in params),
+    for row in result.rows:  # short words and values: the table fits in 80 columns
+        table.add_row(*(f"{row[p]:.4g}" for p in params),
                       *(fmt(row[c], spec) for c, _, spec in shown),
-                      *([row["frequency_source"]] if source else []), row["status"])  # fmt: skip
+                      *([_SOURCE.get(row["frequency_source"], row["frequency_source"])]
+                        if source else []), _STATUS.get(row["status"], row["status"]))  # fmt: skip
     console.print(table)
