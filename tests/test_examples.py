@@ -1,33 +1,35 @@
 """The worked examples in examples/ run as notebooks, the way a reader runs them.
 
-Each ``examples/NN_name.py`` is a Jupyter notebook in jupytext's percent format. Here it is
+Each ``examples/NN_name.py`` is a Jupyter notebook in jupytext's percent format. It is
 converted (jupytext) and executed cell by cell in a fresh Jupyter kernel (nbclient), with
-the examples folder as the working directory, as ``jupyter lab`` would. Every number an
-example's text quotes is asserted in its own cells, so an example whose results drift
-fails here. Measured on this 2-core machine (shared with other jobs; two runs): 01 5-10 s,
-02 8-17 s, 03 14-25 s, 04 4-5 s, 05 29-39 s (Dask start-up and numba warm-up), 06 7-10 s,
-07 6-8 s; 73-114 s in all.
+the examples folder as the working directory, as ``jupyter lab`` would
+(``docs/_hooks/notebooks.py``). Every number an example's text quotes is asserted in its own
+cells, so an example whose results drift fails here. The executed notebooks are kept in
+``$RAILHUNT_EXECUTED_EXAMPLES`` (``build/examples`` when unset) with a fingerprint of the
+example, its data, the package's source and the installed versions: ``.ci/run`` executes
+every example once, before the documentation build, and this test and the site reuse that
+run; a notebook whose fingerprint no longer matches is executed again here.
+``python docs/_hooks/notebooks.py`` prints each example's time.
 """
 
 from __future__ import annotations
 
 import re
+import sys
 from pathlib import Path
 
 import jupytext
-import nbclient
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES_DIR = ROOT / "examples"
 EXAMPLES = sorted(EXAMPLES_DIR.glob("[0-9][0-9]_*.py"))
+sys.path.insert(0, str(ROOT / "docs" / "_hooks"))
+
+import notebooks  # noqa: E402
+
 #: The examples that take longer than 20 s (still part of the default run).
 SLOW = {"03_bifurcation_diagram", "05_parameter_study_dask"}
-
-
-def _files_in(folder: Path) -> set[Path]:
-    return {p for p in folder.rglob("*") if "__pycache__" not in p.parts
-            and ".ipynb_checkpoints" not in p.parts}  # fmt: skip
 
 
 def test_there_are_at_least_seven_examples() -> None:
@@ -58,15 +60,20 @@ def test_every_data_file_an_example_names_ships(path: Path) -> None:
     ids=lambda p: p.stem,
 )
 def test_example_runs_as_a_notebook(path: Path) -> None:
-    nb = jupytext.read(path)
-    before = _files_in(EXAMPLES_DIR)
-    client = nbclient.NotebookClient(nb, timeout=600, kernel_name="python3",
-                                     resources={"metadata": {"path": str(EXAMPLES_DIR)}})
-    client.execute()  # raises CellExecutionError with the failing cell and its traceback
-    shown = [o for c in nb.cells if c.cell_type == "code" for o in c.get("outputs", [])]
+    # Raises CellExecutionError with the failing cell and its traceback.
+    nb = notebooks.executed(path)
+    assert nb.metadata["railhunt"]["fingerprint"] == notebooks.fingerprint(path)
+    shown = notebooks.outputs(nb)
+    assert not [o for o in shown if o["output_type"] == "error"]
     assert any("text/html" in o.get("data", {}) for o in shown), (
         "the notebook shows no HTML table (a result's or a DataFrame's)")
-    assert _files_in(EXAMPLES_DIR) == before, "the example wrote into examples/"
+    assert any("image/png" in o.get("data", {}) for o in shown), (
+        "the notebook shows no figure (is the kernel's matplotlib backend inline?)")
+    assert nb.metadata["railhunt"]["wrote"] == [], "the example wrote into examples/"
+
+
+def test_the_examples_are_found_without_a_list() -> None:
+    assert notebooks.example_paths() == EXAMPLES
 
 
 def test_the_examples_readme_lists_every_example() -> None:
