@@ -17,12 +17,12 @@ from hypothesis import strategies as st
 import railhunt
 from railhunt import Curve, Model, SingleDefect, Vehicle
 from railhunt.analysis.critical import Judgement, critical_speed, judge_run, run_trial
-from railhunt.analysis.verdicts import BLOW_UP, DERAILED, VERDICTS, ending
 from railhunt.cli import main
 from railhunt.kernel.integrators import STATUS_NAMES
 from railhunt.simulation import integrate_model
 from railhunt.stepsize import stable_step, stable_step_for
 from railhunt.vehicle.files import load_shipped, shipped_vehicles
+from railhunt.verdicts import BLOW_UP, DERAILED, VERDICTS, ending
 
 PAPER = Vehicle.paper2019()
 DOCS = Path(__file__).resolve().parents[1] / "docs"
@@ -178,7 +178,7 @@ def test_the_critical_speed_json_carries_warnings_and_limits():
 
 
 def test_the_validity_limits_by_hand():
-    from railhunt.analysis.validity import PRUDHOMME_A, check_wheels
+    from railhunt.validity import PRUDHOMME_A, check_wheels
 
     q0 = 50e3
     Y = np.array([[0.9 * q0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]])

@@ -82,8 +82,8 @@ class SimulationResult(ResultDisplay):
     @property
     def warnings(self) -> list[str]:
         """The limits of the validity envelope the run reached, and a blow-up, in words
-        (:mod:`railhunt.analysis.validity`)."""
-        from railhunt.analysis.validity import warnings_of
+        (:mod:`railhunt.validity`)."""
+        from railhunt.validity import warnings_of
 
         out = warnings_of(self.limits)
         if self.ending == "blow-up":
@@ -94,8 +94,8 @@ class SimulationResult(ResultDisplay):
     @property
     def ending(self) -> str:
         """How the run ended in verdict words: ``"ok"``, ``"derailed"`` or ``"blow-up"``
-        (:func:`railhunt.analysis.verdicts.ending`)."""
-        from railhunt.analysis.verdicts import ending
+        (:func:`railhunt.verdicts.ending`)."""
+        from railhunt.verdicts import ending
 
         return ending(self.status, self.x)
 
@@ -522,7 +522,7 @@ def simulate(
         derived=derived_channels(t, x, *model.args(speed, excitation, route), model.layout),
         layout=model.layout,
     )  # fmt: skip
-    from railhunt.analysis.validity import run_limits
+    from railhunt.validity import run_limits
 
     result.limits = run_limits(result, model, excitation)
     return result

@@ -45,12 +45,12 @@ from railhunt.analysis.periodic import (
     Shooting,
     newton,
 )
-from railhunt.analysis.verdicts import ending
 from railhunt.curve import Curve
 from railhunt.kernel.integrators import OK, STATUS_NAMES
 from railhunt.model import Model
 from railhunt.units import kmh_to_ms, ms_to_kmh
 from railhunt.vehicle import Vehicle
+from railhunt.verdicts import ending
 
 __all__ = ["HOPF_TYPES", "BifurcationDiagram", "Branch", "Fold", "bifurcation_diagram",
            "bifurcation_family",

@@ -3,7 +3,7 @@
 Each trial speed is simulated with a single lateral track defect followed by ideal track,
 and judged from the envelope of the leading wheelset's lateral displacement after the
 defect: *stable* (the motion died out) or not (*hunting*, *undecided*, *derailed* or
-*blow-up*; the words are defined in :mod:`railhunt.analysis.verdicts`). A run is
+*blow-up*; the words are defined in :mod:`railhunt.verdicts`). A run is
 extended chunk by chunk until its envelope is clearly decayed or clearly stationary, so
 that a slowly decaying or slowly growing run is not misjudged
 at the end of a fixed window. The search starts at 300 km/h, steps by 10 km/h until the
@@ -18,19 +18,10 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from railhunt.analysis.curving import EquilibriumPath
+from railhunt.analysis.curving import CurvingError, EquilibriumPath
+from railhunt.analysis.curving_limit import curving_limit
 from railhunt.analysis.modes import least_damped_rate
 from railhunt.analysis.search import bracket_and_bisect, check_search
-from railhunt.analysis.validity import curving_limit
-from railhunt.analysis.verdicts import (
-    BLOW_UP,
-    DERAILED,
-    HUNTING,
-    STABLE,
-    UNDECIDED,
-    ending,
-    trial_reason,
-)
 from railhunt.curve import Curve
 from railhunt.kernel.integrators import OK, STATUS_NAMES
 from railhunt.kernel.layout import LAYOUT, StateLayout
@@ -41,6 +32,15 @@ from railhunt.stepsize import check_step
 from railhunt.track import SampledTrack, SingleDefect, check_excitation
 from railhunt.units import kmh_to_ms
 from railhunt.vehicle import Vehicle
+from railhunt.verdicts import (
+    BLOW_UP,
+    DERAILED,
+    HUNTING,
+    STABLE,
+    UNDECIDED,
+    ending,
+    trial_reason,
+)
 
 #: Near the Hopf point the linear motion itself is nearly stationary: when the least
 #: damped oscillatory eigenvalue's real part is within ``settle_rate`` of zero, an envelope
@@ -123,7 +123,7 @@ class CriticalSpeedResult(ResultDisplay):
     bracketed: bool = True
     excitation: object = None
     curve: Curve | None = None
-    limit: object = None  # CurvingLimit of a search in a curve (railhunt.analysis.validity)
+    limit: object = None  # CurvingLimit of a search in a curve (railhunt.validity)
 
     @property
     def limit_reached(self) -> bool:
@@ -226,7 +226,7 @@ def judge(
     verdict : {"stable", "hunting", "undecided"} or None
         None while the run is still open (and ``final`` is False). At ``final`` a run
         that has not died out is "hunting" when its envelope grows, else "undecided"
-        (verdict words: :mod:`railhunt.analysis.verdicts`).
+        (verdict words: :mod:`railhunt.verdicts`).
     amplitude : float
         Latest envelope value (m).
     growth_rate : float
@@ -412,8 +412,8 @@ def run_until_verdict(
     Returns
     -------
     verdict : {"stable", "hunting", "undecided", "derailed", "blow-up"}
-        The verdict words of :mod:`railhunt.analysis.verdicts`; a run that stopped early
-        (``code != OK``) is "derailed" or "blow-up" (:func:`~railhunt.analysis.verdicts.ending`).
+        The verdict words of :mod:`railhunt.verdicts`; a run that stopped early
+        (``code != OK``) is "derailed" or "blow-up" (:func:`~railhunt.verdicts.ending`).
     t, x : numpy.ndarray
         The whole record: times (s) and states.
     code : int
@@ -561,9 +561,12 @@ def critical_speed(
     if path is not None:  # the search stops at the first limit of the steady state
         limit = curving_limit(path, min_kmh, max_kmh, step_kmh, tol_kmh)
         if limit.reached:
-            if not math.isfinite(limit.last_valid_kmh):
-                return CriticalSpeedResult(math.nan, trials, bracketed=False,
-                                           excitation=excitation, curve=curve, limit=limit)
+            if not math.isfinite(limit.last_valid_kmh):  # nothing inside the envelope
+                raise CurvingError(
+                    f"curve = {curve!r}: the steady-curving state is beyond the validity "
+                    f"envelope already at the lowest speed of the search, {min_kmh:g} km/h "
+                    f"({limit.text}); there is no speed to search: choose a wider curve"
+                )
             max_kmh = limit.last_valid_kmh
             start_kmh = min(start_kmh, max_kmh)
             step_kmh = min(step_kmh, max(max_kmh - min_kmh, tol_kmh))

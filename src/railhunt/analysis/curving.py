@@ -190,8 +190,8 @@ class CurvingResult(ResultDisplay):
     @property
     def warnings(self) -> list[str]:
         """The limits of the validity envelope this state reaches, in words
-        (:mod:`railhunt.analysis.validity`)."""
-        from railhunt.analysis.validity import warnings_of
+        (:mod:`railhunt.validity`)."""
+        from railhunt.validity import warnings_of
 
         return warnings_of(self.limits)
 
@@ -319,7 +319,7 @@ def curving_state(model: Model, speed: float, curve: Curve, x: np.ndarray,
         stable=bool(w[0].real < 0), least_damping_ratio=float(np.min(zeta)),
         hunting_eigenvalue=hunt, eigenvalues=w, residual=residual,
     )  # fmt: skip
-    from railhunt.analysis.validity import curving_limits
+    from railhunt.validity import curving_limits
 
     result.limits = curving_limits(result, model)
     return result

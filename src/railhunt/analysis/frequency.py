@@ -102,7 +102,7 @@ class HuntingFrequency(ResultDisplay):
         diverged) before settling: no frequency (NaN).
     verdict : str
         ``"stable"`` (the disturbance decays), ``"hunting"``, ``"undecided"``,
-        ``"derailed"`` or ``"blow-up"`` (:mod:`railhunt.analysis.verdicts`).
+        ``"derailed"`` or ``"blow-up"`` (:mod:`railhunt.verdicts`).
     amplitude : float
         Amplitude of the leading wheelset on the limit cycle (m); 0 when stable.
     eigen_frequency_hz : float

@@ -97,7 +97,7 @@ class LinearCriticalSpeed(ResultDisplay):
         True when the crossing mode is the wheelset hunting mode.
     crossing : str
         What crosses: ``"hopf"`` (a complex pair: a Hopf point), ``"divergence"`` (a real
-        eigenvalue, verdict word of :mod:`railhunt.analysis.verdicts`) or ``""`` (none).
+        eigenvalue, verdict word of :mod:`railhunt.verdicts`) or ``""`` (none).
     unstable_from_kmh : float
         When the equilibrium is already unstable at the lowest speed searched: that speed
         (km/h; ``speed_kmh`` is then NaN, there is no crossing); else NaN.

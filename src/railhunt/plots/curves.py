@@ -281,7 +281,7 @@ def curve_entry_figure(run: SimulationResult, vehicle: Vehicle, *, curve: Curve 
 
     ax_q.plot(s, run["YQ_w1L"], color="tab:blue", lw=1.0, ls="--", label="left wheel")
     ax_q.plot(s, run["YQ_w1R"], color="tab:red", lw=1.0, label="right wheel")
-    from railhunt.analysis.validity import YQ_LIMIT
+    from railhunt.validity import YQ_LIMIT
 
     ax_q.axhline(YQ_LIMIT, color="k", ls=":", lw=1.0,
                  label=f"Nadal limit Y/Q = {YQ_LIMIT:g} (EN 14363)")  # fmt: skip

@@ -178,8 +178,8 @@ def optimize(
     nominal = model.as_dict() if isinstance(model, Vehicle) else None
     param_cols = list(_tied({n: 0.0 for n in names}, tie_map))
     evaluation = Evaluation(model, names, param_cols, columns, options, excitation, creep_law)
-    from railhunt import __version__
     from railhunt._cache import source_hash
+    from railhunt._version import __version__
 
     meta: dict[str, Any] = {"study": "optimize", "railhunt": __version__,
                             "source": source_hash(), "algorithm": "NSGA-II (pymoo)",

@@ -261,8 +261,8 @@ def sensitivity(
                             "seed": seed, "factors": {f.name: f.describe() for f in facs},
                             "outputs": list(outputs), "points": len(points),
                             "parameter_columns": param_cols}  # fmt: skip
-    from railhunt import __version__
     from railhunt._cache import source_hash
+    from railhunt._version import __version__
 
     meta.update(railhunt=__version__, source=source_hash())
     if isinstance(model, Vehicle):

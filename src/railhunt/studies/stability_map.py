@@ -100,7 +100,9 @@ def evaluate_radius(item: tuple[int, float], vehicle: Vehicle, cant: float,
                          + (", the last speed inside the validity envelope" if top < 1000.0
                             else ""))  # fmt: skip
                 message = "; ".join(m for m in (message, stays) if m)
-        if "critical_speed" in outputs:
+        if "critical_speed" in outputs and top == 0.0:
+            status = STATUS_NO_CRITICAL_SPEED  # beyond the envelope from the lowest speed
+        elif "critical_speed" in outputs:
             res = critical_speed(vehicle, excitation, creep_law=creep_law, curve=curve)
             row["critical_speed_kmh"] = float(res.speed_kmh)
             extra = [w for w in res.warnings if w not in message]
@@ -122,10 +124,10 @@ def evaluate_radius(item: tuple[int, float], vehicle: Vehicle, cant: float,
 
 def curving_limit_of(vehicle: Vehicle, curve: Any, creep_law: str) -> Any:
     """The first limit of the validity envelope the steady-curving state reaches between
-    20 and 800 km/h (:func:`railhunt.analysis.validity.curving_limit`), as the
+    20 and 800 km/h (:func:`railhunt.analysis.curving_limit.curving_limit`), as the
     critical-speed search in that curve finds it."""
     from railhunt.analysis.curving import EquilibriumPath
-    from railhunt.analysis.validity import curving_limit
+    from railhunt.analysis.curving_limit import curving_limit
     from railhunt.model import Model
 
     path = EquilibriumPath(Model(vehicle, creep_law=creep_law), curve)

@@ -9,7 +9,6 @@ from typing import Any
 
 import click
 
-from railhunt.analysis.verdicts import verdict_help
 from railhunt.cli.errors import user_input
 from railhunt.cli.options import (
     CURVE_RULES,
@@ -28,6 +27,7 @@ from railhunt.cli.options import (
 from railhunt.cli.output import announce, fmt, json_safe, spinner, stdout_console, traced
 from railhunt.cli.rules import Ordered, Requires, command
 from railhunt.paper2019 import NO_BLOWOFF  # the blow-off force standing for 'inf' (N)
+from railhunt.verdicts import verdict_help
 
 RULES = (
     Ordered("--from", "--to", "--to {to_kmh:g} km/h must be above --from {from_kmh:g} km/h",

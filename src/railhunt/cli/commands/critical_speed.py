@@ -13,7 +13,6 @@ from typing import Any
 
 import click
 
-from railhunt.analysis.verdicts import verdict_help
 from railhunt.cli.errors import user_input
 from railhunt.cli.options import (
     CURVE_RULES,
@@ -40,6 +39,7 @@ from railhunt.cli.output import (
     trial_progress,
 )
 from railhunt.cli.rules import Excludes, Ordered, Requires, command
+from railhunt.verdicts import verdict_help
 
 RULES = (
     Excludes("--method=stochastic", ("--amplitude", "--wavelength"),
@@ -239,7 +239,7 @@ def critical_speed_command(
     console = stdout_console()
     console.print(table)
     if any(_trial_note(t) == STEADY for t in result.trials):
-        from railhunt.analysis.verdicts import STEADY_CYCLE, VERDICTS
+        from railhunt.verdicts import STEADY_CYCLE, VERDICTS
 
         console.print(f"{STEADY}: {VERDICTS[STEADY_CYCLE]} trend at the end: the verdict was "
                       "taken on the envelope's trend when the 60 s ran out")  # fmt: skip

@@ -182,7 +182,7 @@ def _print_state(state: Any, vehicle: Any, curve: Any) -> None:
 
 def _marked(yq: float) -> str:
     """A Y/Q cell, red and starred beyond Nadal's 0.8 (EN 14363)."""
-    from railhunt.analysis.validity import YQ_LIMIT
+    from railhunt.validity import YQ_LIMIT
 
     return f"[red]{yq:.3f}*[/red]" if yq > YQ_LIMIT else f"{yq:.3f}"
 

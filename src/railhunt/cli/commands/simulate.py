@@ -7,7 +7,6 @@ from typing import Any
 
 import click
 
-from railhunt.analysis.verdicts import verdict_help
 from railhunt.cli.errors import CliError, user_input
 from railhunt.cli.options import (
     CURVE_LEAD_IN,
@@ -29,6 +28,7 @@ from railhunt.cli.options import (
 )
 from railhunt.cli.output import announce, command_record, spinner
 from railhunt.cli.rules import Excludes, Ordered, Requires, command
+from railhunt.verdicts import verdict_help
 
 RULES = (
     Ordered("--output-dt", "--duration",

@@ -9,7 +9,6 @@ from typing import Any
 
 import click
 
-from railhunt.analysis.verdicts import verdict_help
 from railhunt.cli.errors import CliError, user_input
 from railhunt.cli.options import (
     build_vehicle,
@@ -38,6 +37,7 @@ from railhunt.cli.study import (
     scheduler_client,
     study_options,
 )
+from railhunt.verdicts import verdict_help
 
 _HELP = """\
 Linear and nonlinear critical speed of the vehicle against the curve radius.

@@ -89,6 +89,8 @@ class Limit:
     def text(self) -> str:
         """The limit in words, e.g. ``"Y/Q 0.93 > 0.8 (EN 14363) at wheelset 1 right"``."""
         unit = f" {self.unit}" if self.unit not in ("", "1") else ""
+        if math.isnan(self.value):  # no state to measure (e.g. no steady-curving equilibrium)
+            return f"{self.name} ({self.source}): {self.place}"
         if self.name == "wheel lift":
             return (f"wheel lift: Q at the model's floor of {self.limit:.3g} N ({self.source})"
                     f" at {self.place}")  # fmt: skip
@@ -290,88 +292,3 @@ def warnings_of(limits: list[Limit]) -> list[str]:
 
 __all__ = ["Limit", "check_wheels", "check_motion", "check_cant_deficiency",
            "curving_limits", "run_limits", "flange_clearance", "warnings_of"]
-
-
-@dataclass(frozen=True)
-class CurvingLimit:
-    """The first speed at which the steady-curving state leaves the validity envelope.
-
-    Attributes
-    ----------
-    speed_kmh : float
-        The lowest speed (km/h, to ``tol_kmh``) whose steady-curving state reaches a limit;
-        NaN when none is reached in the range.
-    last_valid_kmh : float
-        The highest speed below it inside the envelope (km/h); NaN if even the lowest
-        speed is beyond it.
-    limits : list of Limit
-        The limits reached at ``speed_kmh``.
-    """
-
-    speed_kmh: float
-    last_valid_kmh: float
-    limits: tuple[Limit, ...] = ()
-
-    @property
-    def reached(self) -> bool:
-        """True when a limit is reached within the range."""
-        return math.isfinite(self.speed_kmh)
-
-    @property
-    def text(self) -> str:
-        """E.g. ``"curving limit at 231 km/h: Y/Q 0.81 beyond 0.8 (EN 14363) at ..."``."""
-        if not self.reached:
-            return ""
-        return f"curving limit at {self.speed_kmh:g} km/h: " + "; ".join(
-            lim.text for lim in self.limits)
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready."""
-        return {"speed_kmh": self.speed_kmh if self.reached else None,
-                "last_valid_kmh": (self.last_valid_kmh if math.isfinite(self.last_valid_kmh)
-                                   else None),
-                "text": self.text, "limits": [lim.to_dict() for lim in self.limits]}  # fmt: skip
-
-
-def curving_limit(path: Any, min_kmh: float, max_kmh: float, step_kmh: float = 10.0,
-                  tol_kmh: float = 1.0) -> CurvingLimit:  # fmt: skip
-    """The first speed at which the steady-curving state reaches a limit.
-
-    Scans the speeds ``min_kmh, min_kmh + step_kmh, ...`` up to ``max_kmh`` on the
-    equilibrium path (:class:`railhunt.analysis.curving.EquilibriumPath`), then bisects
-    to ``tol_kmh`` between the last speed inside the envelope and the first beyond it.
-    A speed with no equilibrium at all (Newton fails: far beyond the curving limit)
-    counts as beyond.
-    """
-    from railhunt.analysis.curving import CurvingError, curving_state
-    from railhunt.units import kmh_to_ms
-
-    def limits_at(kmh: float) -> tuple[Limit, ...]:
-        speed = kmh_to_ms(kmh)
-        curve = path.curve_at(speed)
-        try:
-            state = path.state(speed)
-        except CurvingError:
-            return (Limit("flange clearance", math.nan, math.nan, "m",
-                          f"{kmh:g} km/h: no steady-curving equilibrium", "railhunt"),)
-        return tuple(curving_state(path.model, speed, curve, state).limits)
-
-    grid = list(np.arange(min_kmh, max_kmh, step_kmh)) + [max_kmh]
-    last = math.nan
-    for kmh in grid:
-        found = limits_at(float(kmh))
-        if not found:
-            last = float(kmh)
-            continue
-        if math.isnan(last):
-            return CurvingLimit(float(kmh), math.nan, found)
-        lo, hi, at_hi = last, float(kmh), found
-        while hi - lo > tol_kmh + 1e-9:
-            mid = lo + tol_kmh * max(1, round((hi - lo) / (2 * tol_kmh)))
-            got = limits_at(mid)
-            if got:
-                hi, at_hi = mid, got
-            else:
-                lo = mid
-        return CurvingLimit(hi, lo, at_hi)
-    return CurvingLimit(math.nan, last, ())
