@@ -101,3 +101,20 @@ def test_curving_needs_its_curve():
         sweep(Vehicle.paper2019(), {"K_px": [40e6]}, ["curving"], workers=1)
     with pytest.raises(ValueError, match="curve_radius"):
         OutputOptions(curve_radius=10.0)
+
+
+def test_study_outputs_use_the_layouts_own_creep_law_by_default():
+    """The Cooperrider bogie's layout uses Vermeulen-Johnson: the fold speed without a
+    creep_law is that law's, not the paper's heuristic (which moves it by ~1e-3 km/h)."""
+    import inspect
+
+    from railhunt import Vehicle
+    from railhunt.analysis.fold import fold_speed
+    from railhunt.studies import optimize, sensitivity
+
+    bogie = Vehicle.shipped("cooperrider_bogie")
+    default = fold_speed(bogie).speed_kmh
+    assert default == fold_speed(bogie, creep_law="vermeulen-johnson").speed_kmh
+    assert default != fold_speed(bogie, creep_law="heuristic").speed_kmh
+    for study in (sensitivity.sensitivity, optimize.optimize):
+        assert inspect.signature(study).parameters["creep_law"].default is None

@@ -119,7 +119,7 @@ def fold_speed(
     max_points: int = 80,
     max_ds: float = 150.0,
     coarse_tol: float = 1e-5,
-    creep_law: str = "heuristic",
+    creep_law: str | None = None,
 ) -> FoldSpeed:
     """Lowest speed of a limit cycle on the Hopf branch, by a short continuation.
 
@@ -143,8 +143,8 @@ def fold_speed(
     coarse_tol : float
         Corrector tolerance of the coarse trace (scaled shooting residual); the
         refinement solves to 1e-9, as the bifurcation diagram does.
-    creep_law : str
-        See :class:`railhunt.model.Model`.
+    creep_law : str, optional
+        See :class:`railhunt.model.Model`; default: the layout's own law.
 
     Returns
     -------

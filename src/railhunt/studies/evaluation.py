@@ -46,7 +46,7 @@ class Evaluation:
 
     def __init__(self, model: Vehicle | Callable[..., Mapping[str, Any]], names: Sequence[str],
                  param_columns: Sequence[str], columns: Sequence[str], options: OutputOptions,
-                 excitation: object = None, creep_law: str = "heuristic",
+                 excitation: object = None, creep_law: str | None = None,
                  frequency_speed_kmh: float | None = None) -> None:  # fmt: skip
         self.model = model
         self.names = list(names)

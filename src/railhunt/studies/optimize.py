@@ -127,7 +127,7 @@ def optimize(
     connect_timeout: float = CONNECT_TIMEOUT,
     output_options: OutputOptions | Mapping[str, Any] | None = None,
     excitation: object = None,
-    creep_law: str = "heuristic",
+    creep_law: str | None = None,
 ) -> ParetoResult:
     """Pareto front of ``objectives`` over the ``factors`` by NSGA-II (pymoo).
 

@@ -108,7 +108,7 @@ def empty_columns(name: str) -> dict[str, float]:
 
 
 def least_damping_ratio(vehicle: Vehicle, speeds_kmh: np.ndarray,
-                        creep_law: str = "heuristic") -> float:  # fmt: skip
+                        creep_law: str | None = None) -> float:  # fmt: skip
     """Least ``-Re(lambda)/|lambda|`` over all eigenvalues of the centred running at the
     given speeds (km/h)."""
     from railhunt.analysis.modes import eigenvalues
@@ -126,7 +126,7 @@ def least_damping_ratio(vehicle: Vehicle, speeds_kmh: np.ndarray,
 
 
 def curving_outputs(vehicle: Vehicle, options: OutputOptions,
-                    creep_law: str = "heuristic") -> dict[str, float]:  # fmt: skip
+                    creep_law: str | None = None) -> dict[str, float]:  # fmt: skip
     """``max_YQ``, ``sum_Y_leading`` (N) and ``wear_number`` (N) in the options' curve."""
     from railhunt.analysis.curving import curving
     from railhunt.analysis.wear import wheel_wear_numbers
@@ -143,7 +143,7 @@ def curving_outputs(vehicle: Vehicle, options: OutputOptions,
 
 
 def evaluate_output(name: str, vehicle: Vehicle, options: OutputOptions | None,
-                    creep_law: str = "heuristic") -> dict[str, float]:  # fmt: skip
+                    creep_law: str | None = None) -> dict[str, float]:  # fmt: skip
     """The columns of one output of :data:`NEW_OUTPUT_COLUMNS` for one vehicle."""
     options = options or OutputOptions()
     if name == "fold_speed":

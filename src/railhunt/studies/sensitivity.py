@@ -189,7 +189,7 @@ def sensitivity(
     output_options: OutputOptions | Mapping[str, Any] | None = None,
     frequency_speed_kmh: float | None = None,
     excitation: object = None,
-    creep_law: str = "heuristic",
+    creep_law: str | None = None,
 ) -> SensitivityResult:
     """Sobol' or Morris sensitivity indices of a model's outputs to its factors.
 
