@@ -40,6 +40,7 @@ from railhunt.kernel.layout import (
     N_DOF,
     StateLayout,
 )
+from railhunt.layout.assembly import point_row as assembly_point_row
 from railhunt.vehicle import Vehicle
 
 __all__ = [
@@ -105,24 +106,9 @@ def point_row(body: str, point: tuple[float, float, float], axis: str,
     numpy.ndarray
         Row of length ``n_dof`` (m per m or m per rad).
     """
-    iy, ipsi, iphi = layout.body_dofs(body)
-    px, py, pz = point
-    row = np.zeros(layout.n_dof)
-    if axis == "x":
-        if ipsi >= 0:
-            row[ipsi] = -py
-    elif axis == "y":
-        row[iy] = 1.0
-        if ipsi >= 0:
-            row[ipsi] = px
-        if iphi >= 0:
-            row[iphi] = pz
-    elif axis == "z":
-        if iphi >= 0:
-            row[iphi] = -py
-    else:
+    if axis not in ("x", "y", "z"):
         raise ValueError(f"axis must be 'x', 'y' or 'z', got {axis!r}")
-    return row
+    return assembly_point_row(layout.body_dofs(body), point, axis, layout.n_dof)
 
 
 def suspension_elements(vehicle: Vehicle) -> list[Element]:

@@ -235,8 +235,15 @@ def arm(point: tuple[Expression, Expression, Expression], body: BodySpec,
             difference(point[2], body.height, values))  # fmt: skip
 
 
-def _point_row(dofs: tuple[int, int, int], p: tuple[float, float, float], axis: str,
-               n: int) -> np.ndarray:  # fmt: skip
+def point_row(dofs: tuple[int, int, int], p: tuple[float, float, float], axis: str,
+              n: int) -> np.ndarray:  # fmt: skip
+    """Displacement of a body-fixed point along ``axis`` as a row over the ``n`` coordinates.
+
+    ``dofs`` are the body's ``(y, psi, phi)`` indices (-1: none; a fixed body or the track
+    has none), ``p`` the point relative to its centre of gravity (m); ``axis`` is
+    ``"x"``, ``"y"``, ``"z"`` (small angles: ``u_x = -psi py``, ``u_y = y + psi px + phi pz``,
+    ``u_z = -phi py``), or ``"yaw"``/``"roll"`` for a torsion element.
+    """
     iy, ipsi, iphi = dofs
     px, py, pz = p
     row = np.zeros(n)
@@ -267,11 +274,11 @@ def _element_row(el: ElementSpec, bodies: dict[str, BodySpec],
     track: point on body a minus the rails, as the kernel's flange stops read it)."""
     try:
         a = bodies[el.body_a]
-        row_a = _point_row(index.get(a.name, (-1, -1, -1)), arm(el.at, a, values), el.axis, n)
+        row_a = point_row(index.get(a.name, (-1, -1, -1)), arm(el.at, a, values), el.axis, n)
         if el.body_b == TRACK:
             return row_a  # against the rails: the body's displacement minus the rails'
         b = bodies[el.body_b]
-        row_b = _point_row(index.get(b.name, (-1, -1, -1)), arm(el.at_b, b, values), el.axis,
+        row_b = point_row(index.get(b.name, (-1, -1, -1)), arm(el.at_b, b, values), el.axis,
                            n)  # fmt: skip
     except ExpressionError as exc:
         raise LayoutError(f"{where}: element {el.name!r}: {exc}") from None
