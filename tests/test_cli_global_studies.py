@@ -73,7 +73,7 @@ def test_optimize_json_png(tmp_path):
     result = run("optimize", "K_px", "--from", "2e6", "--to", "40e6", "C_d1", "--tolerance", "0.3",
                  "--objective", "max linear_critical_speed_kmh", "--objective", "min wear_number",
                  "--constraint", "linear_critical_speed_kmh >= 300", "--curve-radius", "600",
-                 "--cant", "0.15", "--curve-speed", "120", "--population", "4",
+                 "--cant", "150", "--curve-speed", "120", "--population", "4",
                  "--generations", "1", "--workers", "1", "--out", str(out), "--png", str(png),
                  "--json")  # fmt: skip
     assert result.exit_code == 0, result.stderr
@@ -82,6 +82,9 @@ def test_optimize_json_png(tmp_path):
     assert {"railhunt_version", "vehicle_fingerprint"} <= set(data)
     assert len(data["hypervolume"]) == 1
     assert png.read_bytes().startswith(PNG_SIGNATURE)
+    # --cant is in mm, as in every command with a curve; the study stores SI
+    meta = json.loads(out.with_name(out.name + ".sweep.json").read_text())
+    assert meta["curve_cant"] == pytest.approx(0.150)
 
 
 @pytest.mark.parametrize(("args", "fragments"), [

@@ -13,6 +13,7 @@ from typing import Any
 import click
 
 from railhunt.cli.errors import CliError
+from railhunt.cli.options import cant_option
 from railhunt.cli.rules import Command
 
 __all__ = ["FACTOR_FLAGS", "FactorCommand", "curve_flags", "factors_from", "output_columns",
@@ -89,12 +90,14 @@ def factors_from(ctx: click.Context) -> dict[str, object]:
     return out
 
 
-def output_options_from(curve_radius: float | None, cant: float, curve_speed: float | None,
+def output_options_from(curve_radius: float | None, cant: float | None, curve_speed: float | None,
                         damping_range: tuple[float, float] | None) -> Any:  # fmt: skip
     """The :class:`railhunt.studies.outputs.OutputOptions` of the curve and damping flags."""
     from railhunt.studies.outputs import OutputOptions
 
-    kwargs: dict[str, Any] = {"curve_radius": curve_radius, "curve_cant": cant,
+    # --cant is in mm, as in every command with a curve (the edge converts to SI).
+    kwargs: dict[str, Any] = {"curve_radius": curve_radius,
+                              "curve_cant": 0.0 if cant is None else cant * 1e-3,
                               "curve_speed_kmh": curve_speed}  # fmt: skip
     if damping_range is not None:
         kwargs["damping_range_kmh"] = tuple(damping_range)
@@ -108,15 +111,14 @@ def output_options_from(curve_radius: float | None, cant: float, curve_speed: fl
 
 
 def curve_flags(func: Any) -> Any:
-    """``--curve-radius M``, ``--cant M``, ``--curve-speed KMH`` and ``--damping-range``."""
+    """``--curve-radius M``, ``--cant MM``, ``--curve-speed KMH`` and ``--damping-range``."""
     func = click.option("--damping-range", "damping_range", type=float, nargs=2,
                         metavar="LO HI",
                         help="Speed range of least_damping_ratio (km/h) [default: 50 300].")(func)
     func = click.option("--curve-speed", "curve_speed", type=float, metavar="KMH",
                         help="Speed in the curve of max_YQ, sum_Y_leading, wear_number (km/h)."
                         )(func)  # fmt: skip
-    func = click.option("--cant", type=float, default=0.0, show_default=True, metavar="M",
-                        help="Cant of that curve (m).")(func)
+    func = cant_option("Cant of that curve (mm) [default: 0].", dest="cant")(func)
     return click.option("--curve-radius", "curve_radius", type=float, metavar="M",
                         help="Radius of the curve of the curving outputs (m).")(func)
 

@@ -46,7 +46,7 @@ Example:
   railhunt optimize K_px --from 2e6 --to 40e6 C_d1 --tolerance 0.3 \\
       --objective "max linear_critical_speed_kmh" --objective "min wear_number" \\
       --constraint "linear_critical_speed_kmh >= 385" --curve-radius 600 \\
-      --cant 0.15 --curve-speed 120 --population 16 --generations 8 \\
+      --cant 150 --curve-speed 120 --population 16 --generations 8 \\
       --out pareto.csv --png pareto.png
 """
 
