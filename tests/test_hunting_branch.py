@@ -63,3 +63,26 @@ def test_paper_vehicle_keeps_its_per_speed_pick(kmh):
         w, vecs, model.half_gauge, model.layout)  # fmt: skip
     assert crossing_mode_index(model, kmh, w) == hunting_mode_index(
         w, vecs, model.half_gauge, model.layout)  # fmt: skip
+
+
+def test_hopf_branch_is_measured_on_the_wheelset_that_moves_most():
+    """The articulated pair's crossing mode lives on its rear bogie (y_w1 moves 0.066 of
+    y_w6): its Hopf branch is measured, and its phase fixed, on y_w6; the paper's vehicle
+    keeps y_w1 (0.12 of its rear wheelset's motion), so its diagram does not move."""
+    from pathlib import Path
+
+    from railhunt.analysis.continuation import _hopf_start, measure_coordinate
+    from railhunt.analysis.periodic import Shooting
+
+    example = Path(__file__).parent.parent / "examples" / "data" / "articulated_pair.toml"
+    for vehicle, wheelset in ((Vehicle.paper2019(), 0), (Vehicle.from_toml(example), 5)):
+        model = Model(vehicle)
+        shape, _ = _hopf_start(model, linear_critical_speed(vehicle).speed_kmh)
+        coordinate = measure_coordinate(model, shape)
+        assert coordinate == model.layout.wheelset_y[wheelset]
+        assert shape[coordinate] == pytest.approx(1.0)
+        assert np.max(np.abs(shape[model.layout.wheelset_y])) < 1.0 + 1e-9 or wheelset == 0
+        shoot = Shooting(model, phase_coordinate=coordinate)
+        assert shoot.phase_index == model.layout.rate0 + coordinate
+    with pytest.raises(ValueError, match="phase_coordinate"):
+        Shooting(Model(Vehicle.paper2019()), phase_coordinate=10_000)
