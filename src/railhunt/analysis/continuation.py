@@ -73,7 +73,8 @@ def _check_range(speed_range_kmh: tuple[float, float]) -> tuple[float, float]:
 
 def _hopf_start(model: Model, hopf_kmh: float,
                 path: EquilibriumPath | None = None) -> tuple[np.ndarray, float]:  # fmt: skip
-    """Hunting eigenvector normalised to y_w1 = 1 (real state shape) and the period (s).
+    """Hunting eigenvector normalised to 1 at :func:`measure_coordinate` (real state
+    shape) and the period (s).
 
     About the centred state, or about the curving equilibrium of ``path``.
     """
@@ -93,11 +94,36 @@ def _hopf_start(model: Model, hopf_kmh: float,
         lam, vec = np.conj(lam), np.conj(vecs[:, k])
     else:
         vec = vecs[:, k]
-    vec = vec / vec[model.layout.y_w1]
+    vec = vec / vec[measure_coordinate(model, vec)]
     return np.real(vec), 2 * math.pi / abs(lam.imag)
 
 
-#: ``y_w1(0)`` of the three small orbits that start the Hopf branch (m).
+def measure_coordinate(model: Model, shape: np.ndarray) -> int:
+    """Index of the displacement that measures the Hopf branch: its phase condition, step
+    control, small orbits and end at a second Hopf point use it.
+
+    y_w1, unless the leading wheelset moves less than :data:`LEADING_SHARE` of the wheelset
+    that moves most laterally in the crossing mode ``shape`` (complex or real state
+    vector): then that wheelset's lateral displacement. The paper's vehicle: y_w1 (it
+    moves 0.12 of the rear wheelset at the Hopf point); the articulated pair of
+    ``examples/data/articulated_pair.toml``, whose crossing mode lives on its rear bogie
+    (y_w1 0.066 of y_w6): y_w6.
+    """
+    layout = model.layout
+    amp = np.abs(shape[layout.wheelset_y])
+    k = int(np.argmax(amp))
+    if abs(shape[layout.y_w1]) >= LEADING_SHARE * amp[k]:
+        return layout.y_w1
+    return int(layout.wheelset_y[k])
+
+
+#: The leading wheelset measures the Hopf branch while it moves at least this share of the
+#: wheelset that moves most in the crossing mode (:func:`measure_coordinate`).
+LEADING_SHARE = 0.1
+
+
+#: The measure coordinate's ``x(0)`` (:func:`measure_coordinate`, y_w1 for the paper's
+#: vehicle) of the three small orbits that start the Hopf branch (m).
 SMALL_ORBIT_SEEDS = (5e-5, 1e-4, 2e-4)
 
 
@@ -124,8 +150,11 @@ class _Tracer:
         self.on_point = on_point
         keep = np.ones(shoot.n_state, dtype=bool)
         keep[shoot.phase_index] = False
-        self.y_w1 = shoot.model.layout.y_w1
-        self.iy = int(np.flatnonzero(keep).tolist().index(self.y_w1))
+        #: The displacement that measures the branch (the shooting's phase coordinate).
+        self.measure = shoot.phase_coordinate
+        self.iy = int(np.flatnonzero(keep).tolist().index(self.measure))
+        #: The wheelset whose amplitude ends the branch at a second Hopf point.
+        self.wheel = [int(i) for i in shoot.model.layout.wheelset_y].index(self.measure)
 
     def solve(self, u: np.ndarray, norm: float, it: int) -> tuple[PeriodicOrbit, tuple]:
         lin = self.shoot.linearise(u)
@@ -162,7 +191,7 @@ class _Tracer:
             ok = False
             while ds >= ds_min:
                 dv_kmh = ms_to_kmh(abs(tangent[-1]) * Shooting.V_SCALE)
-                da = abs(tangent[iy]) * self.shoot.scale[self.y_w1]
+                da = abs(tangent[iy]) * self.shoot.scale[self.measure]
                 ds = min(ds, ds_max, lim.max_step_kmh / max(dv_kmh, 1e-12),
                          lim.max_step_amplitude / max(da, 1e-12))  # fmt: skip
                 u_pred = u_prev + ds * tangent
@@ -199,7 +228,7 @@ class _Tracer:
                 return orbits, "left the speed range upward", True, False
             if orbit.amplitude > lim.max_amplitude:
                 return orbits, f"amplitude above {lim.max_amplitude * 1e3:g} mm", True, False
-            if orbit.amplitude < lim.min_amplitude:
+            if orbit.wheelset_amplitudes[self.wheel] < lim.min_amplitude:
                 return orbits, (f"came back to the equilibrium near {v_kmh:.1f} km/h (a second "
                                 "Hopf point)"), True, False  # fmt: skip
             reason = stop(orbits) if stop is not None else ""
@@ -297,12 +326,14 @@ def bifurcation_diagram(
     shoot = Shooting(model, symmetric=symmetric and curve is None, dt=dt,
                      dt_speed=kmh_to_ms(max(hi, hopf)),
                      route=None if path is None else path.route,
-                     equilibrium=None if path is None else path.state)  # fmt: skip
+                     equilibrium=None if path is None else path.state,
+                     phase_coordinate=measure_coordinate(model, shape))  # fmt: skip
     shoot.set_period_hint(period0)
     x_hopf = np.zeros(shoot.n_state) if path is None else path.state(kmh_to_ms(hopf))
     tracer = _Tracer(shoot, limits, on_point)
 
-    # 1. Three small orbits with y_w1(0) fixed (natural parameter), from the eigenvector.
+    # 1. Three small orbits with the measure coordinate's x(0) fixed (natural parameter),
+    # from the eigenvector.
     small = hopf_branch_start(shoot, tracer, x_hopf, shape, period0, hopf)
     a_small = np.array([o.amplitude for _, o, _ in small])
     v_small = np.array([o.speed_kmh for _, o, _ in small])
@@ -370,11 +401,11 @@ def bifurcation_diagram(
 
 
 def small_orbit_seeds(shoot: Shooting, shape: np.ndarray) -> tuple[float, ...]:
-    """``y_w1(0)`` of the three small orbits that start the Hopf branch (m).
+    """The measure coordinate's ``x(0)`` of the three small orbits of the Hopf branch (m).
 
     Small orbits are small on every wheelset: where the crossing mode ``shape`` (normalised
-    to ``y_w1 = 1``) moves another wheelset more than y_w1 (a rear bogie of an articulated
-    train), the seeds shrink by that ratio (the paper's vehicle: y_w1 moves most, the seeds
+    to 1 at :func:`measure_coordinate`) moves another wheelset more than that, the seeds
+    shrink by that ratio (the paper's vehicle: y_w1, the measure, moves most, the seeds
     are :data:`SMALL_ORBIT_SEEDS`).
     """
     largest = float(np.max(np.abs(shape[shoot.model.layout.wheelset_y])))
@@ -386,7 +417,8 @@ def small_orbit_seeds(shoot: Shooting, shape: np.ndarray) -> tuple[float, ...]:
 def hopf_branch_start(shoot: Shooting, tracer: _Tracer, x_hopf: np.ndarray, shape: np.ndarray,
                       period0: float, hopf: float,
                       ) -> list[tuple[np.ndarray, PeriodicOrbit, tuple]]:  # fmt: skip
-    """Three small orbits of the Hopf branch, ``y_w1(0)`` fixed at 0.05, 0.1 and 0.2 mm.
+    """Three small orbits of the Hopf branch, the measure coordinate's ``x(0)``
+    (:func:`measure_coordinate`) fixed at 0.05, 0.1 and 0.2 mm.
 
     Started from the hunting eigenvector ``shape`` about ``x_hopf`` and the Hopf period
     (natural parameter: the speed is an unknown). Returns ``(u, orbit, linearisation)``
@@ -397,7 +429,7 @@ def hopf_branch_start(shoot: Shooting, tracer: _Tracer, x_hopf: np.ndarray, shap
     small: list[tuple[np.ndarray, PeriodicOrbit, tuple]] = []
     u = shoot.pack(x_hopf + seeds[0] * shape, period0, kmh_to_ms(hopf))
     for n, eps in enumerate(seeds):
-        target = (x_hopf[tracer.y_w1] + eps) / shoot.scale[tracer.y_w1]
+        target = (x_hopf[tracer.measure] + eps) / shoot.scale[tracer.measure]
         if n >= 2:
             u = small[-1][0] + (small[-1][0] - small[-2][0]) * (eps - seeds[n - 1]) / (
                 seeds[n - 1] - seeds[n - 2])  # fmt: skip
@@ -438,7 +470,7 @@ def _release(model: Model, shoot: Shooting, speed_kmh: float, amplitude: float,
 
     speed = kmh_to_ms(speed_kmh)
     layout = model.layout
-    y_w1 = layout.y_w1
+    y_w1 = shoot.phase_coordinate  # the phase origin is an extremum of this coordinate
     x_eq = np.zeros(layout.n_state) if path is None else path.state(speed)
     x0 = x_eq.copy()
     x0[layout.wheelset_y] += amplitude

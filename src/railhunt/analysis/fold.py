@@ -37,6 +37,7 @@ from railhunt.analysis.continuation import (
     _Limits,
     _Tracer,
     hopf_branch_start,
+    measure_coordinate,
     small_orbit_seeds,
 )
 from railhunt.analysis.linear import linear_critical_speed
@@ -170,7 +171,8 @@ def fold_speed(
     if not math.isfinite(hopf):
         raise ValueError("the centred equilibrium stays stable up to 2000 km/h: no Hopf point")
     shape, period0 = _hopf_start(model, hopf)
-    shoot = Shooting(model, symmetric=True, dt_speed=kmh_to_ms(hopf))
+    shoot = Shooting(model, symmetric=True, dt_speed=kmh_to_ms(hopf),
+                     phase_coordinate=measure_coordinate(model, shape))
     shoot.set_period_hint(period0)
     smallest = 0.75 * small_orbit_seeds(shoot, shape)[-1]
     coarse = _Limits(min_kmh, hopf + 50.0, max_amplitude, int(max_points), coarse_step_kmh,

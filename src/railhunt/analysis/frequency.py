@@ -22,7 +22,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from railhunt.analysis.critical import HUNTING, STABLE, Judgement, run_until_verdict
-from railhunt.analysis.linear import eigen_analysis
+from railhunt.analysis.hunting_branch import hunting_mode_at
+from railhunt.analysis.modes import eigenvalues
 from railhunt.analysis.periodic import periodic_orbit, phase_origin
 from railhunt.model import Model
 from railhunt.results import Columns, ResultDisplay, Row
@@ -238,9 +239,13 @@ def hunting_frequency(
     # leaves (the paper's Fig. 10a trend of f falling with C_d1 above the jump). Followed
     # down from the Hopf point instead, the mode that goes unstable there is a different,
     # heavily damped one at 300 km/h for C_d1 > 500 kN*s/m (docs/studies.md).
-    eig = eigen_analysis(vehicle, [speed_kmh], creep_law=creep_law)
-    f_eig = float(eig.hunting_frequency_hz[0])
-    zeta = float(eig.hunting_damping_ratio[0])
+    # Where the mode that crosses at the Hopf point is not a wheelset mode (a frame
+    # hunting with its wheelsets, the Cooperrider bogie), its continuation in speed is
+    # a candidate too (railhunt.analysis.hunting_branch).
+    w, vecs = eigenvalues(model, speed)
+    lam = complex(w[hunting_mode_at(model, speed_kmh, w, vecs)])
+    f_eig = lam.imag / (2 * math.pi)
+    zeta = -lam.real / abs(lam)
     dt = auto_step(model, speed)
     layout = model.layout
     y_w1, forces = layout.y_w1, layout.forces

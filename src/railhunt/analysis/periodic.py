@@ -159,6 +159,10 @@ class Shooting:
         (the steady-curving state), from which orbits are told apart (default: the
         centred state). With a route, an orbit's amplitudes are its half peak-to-peak
         swings (it is not symmetric about the equilibrium).
+    phase_coordinate : int, optional
+        Index of the displacement whose rate is zero at ``t = 0`` (the phase condition);
+        default y_w1. The Hopf branch uses the wheelset that moves most in the crossing
+        mode (:func:`railhunt.analysis.continuation.measure_coordinate`).
     """
 
     T_SCALE = 1e-2
@@ -167,7 +171,8 @@ class Shooting:
     def __init__(self, model: Model, symmetric: bool = True, dt: float | None = None,
                  dt_speed: float = 140.0, locate_switching: bool = True,
                  route: np.ndarray | None = None,
-                 equilibrium: Callable[[float], np.ndarray] | None = None) -> None:  # fmt: skip
+                 equilibrium: Callable[[float], np.ndarray] | None = None,
+                 phase_coordinate: int | None = None) -> None:  # fmt: skip
         self.model = model
         self.symmetric = symmetric
         self.route = route
@@ -180,8 +185,13 @@ class Shooting:
         self.n_steps = 0  # set by set_period_hint
         layout = model.layout
         self.n_state = layout.n_state
-        #: Index of dy_w1/dt (the phase condition) and the states' scales of this model.
-        self.phase_index = layout.rate0 + layout.y_w1
+        #: The displacement whose rate the phase condition fixes to zero (default y_w1),
+        #: the index of that rate, and the states' scales of this model.
+        self.phase_coordinate = layout.y_w1 if phase_coordinate is None else int(phase_coordinate)
+        if not 0 <= self.phase_coordinate < layout.n_dof:
+            raise ValueError(f"phase_coordinate = {phase_coordinate!r} is invalid: must be a "
+                             f"displacement index in [0, {layout.n_dof})")  # fmt: skip
+        self.phase_index = layout.rate0 + self.phase_coordinate
         self.scale = state_scale(layout)
         self.wheelset_y = layout.wheelset_y
         self._keep = np.ones(self.n_state, dtype=bool)
