@@ -18,8 +18,8 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from railhunt.analysis.curving import CurvingError, EquilibriumPath
-from railhunt.analysis.curving_limit import curving_limit
+from railhunt.analysis.curving import EquilibriumPath
+from railhunt.analysis.curving_limit import capped_at_curving_limit
 from railhunt.analysis.modes import least_damped_rate
 from railhunt.analysis.search import bracket_and_bisect, check_search
 from railhunt.curve import Curve
@@ -559,15 +559,9 @@ def critical_speed(
     path = None if curve is None else EquilibriumPath(model, curve)
     limit = None
     if path is not None:  # the search stops at the first limit of the steady state
-        limit = curving_limit(path, min_kmh, max_kmh, step_kmh, tol_kmh)
+        limit, max_kmh = capped_at_curving_limit(path, curve, min_kmh, max_kmh, step_kmh,
+                                                 tol_kmh)  # fmt: skip
         if limit.reached:
-            if not math.isfinite(limit.last_valid_kmh):  # nothing inside the envelope
-                raise CurvingError(
-                    f"curve = {curve!r}: the steady-curving state is beyond the validity "
-                    f"envelope already at the lowest speed of the search, {min_kmh:g} km/h "
-                    f"({limit.text}); there is no speed to search: choose a wider curve"
-                )
-            max_kmh = limit.last_valid_kmh
             start_kmh = min(start_kmh, max_kmh)
             step_kmh = min(step_kmh, max(max_kmh - min_kmh, tol_kmh))
 
