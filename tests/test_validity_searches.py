@@ -30,3 +30,21 @@ def test_the_linear_search_in_a_curve_stops_at_the_curving_limit():
     assert "stable up to 118 km/h, where the search stopped" in lin.text
     # Straight track: no limit, no warning (the fingerprint's search is unchanged).
     assert railhunt.linear_critical_speed(PAPER, min_kmh=400.0, max_kmh=460.0).warnings == []
+
+
+def test_the_stochastic_search_carries_the_limits_its_runs_reach():
+    # main: no warnings and no limits, though the runs above the criterion's speed reach
+    # the limits simulate() reports for the same run.
+    from railhunt.analysis.stochastic import run_on_track
+
+    track = railhunt.track_irregularity("german-high", length=400.0, seed=1)
+    res = railhunt.stochastic_critical_speed(PAPER, track, start_kmh=300.0, step_kmh=40.0,
+                                             tol_kmh=40.0)  # fmt: skip
+    assert res.trials and all(isinstance(a.limits, list) for a in res.trials)
+    top = max(res.trials, key=lambda a: a.speed_kmh)
+    sim, _ = run_on_track(PAPER, top.speed_kmh, track)
+    assert [lim.to_dict() for lim in top.limits] == [lim.to_dict() for lim in sim.limits]
+    assert top.limits, "the fastest run breaks the criterion: it reaches a limit too"
+    assert len(res.warnings) == sum(len(a.limits) for a in res.trials)
+    assert any(w.startswith(f"{top.speed_kmh:g} km/h: limit reached: ") for w in res.warnings)
+    assert all(lim.place.endswith(" km/h") for lim in res.limits)
