@@ -48,3 +48,28 @@ def test_the_stochastic_search_carries_the_limits_its_runs_reach():
     assert len(res.warnings) == sum(len(a.limits) for a in res.trials)
     assert any(w.startswith(f"{top.speed_kmh:g} km/h: limit reached: ") for w in res.warnings)
     assert all(lim.place.endswith(" km/h") for lim in res.limits)
+
+
+def test_a_straight_track_search_reports_the_limits_its_trials_reach():
+    # main: no warnings; the 310 km/h trial hunts with Y/Q above Nadal's 0.8 (the paper's
+    # defect drives the wheels hard even at a stable speed). The limits change no verdict.
+    res = railhunt.critical_speed(PAPER, start_kmh=300.0, step_kmh=10.0, tol_kmh=10.0)
+    assert res.speed_kmh == 300.0
+    assert [(t.speed_kmh, t.verdict) for t in res.trials] == [(300.0, "stable"),
+                                                              (310.0, "hunting")]  # fmt: skip
+    hunting = res.trials[1]
+    assert "Y/Q" in {lim.name for lim in hunting.limits}
+    yq = next(lim for lim in hunting.limits if lim.name == "Y/Q")
+    assert yq.value > 0.8 and yq.place.startswith("wheelset ")
+    assert f"310 km/h: limit reached: {yq.text}" in res.warnings
+    assert any(lim.place.endswith(", 310 km/h") for lim in res.limits)
+    assert len(res.limits) == sum(len(t.limits) for t in res.trials)
+
+
+def test_the_critical_speed_json_lists_the_trials_limits():
+    result = run("critical-speed", "--start", "300", "--step", "10", "--tol", "10", "--json")
+    data = json.loads(result.stdout)
+    assert data["nonlinear_critical_speed_kmh"] == 300.0
+    assert any(w.startswith("310 km/h: limit reached: Y/Q") for w in data["warnings"])
+    assert any(d["name"] == "Y/Q" and d["place"].endswith("310 km/h") for d in data["limits"])
+    assert data["linear_warnings"] == [] and data["linear_curving_limit"] is None

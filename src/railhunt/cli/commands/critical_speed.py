@@ -339,8 +339,7 @@ def _critical_json(
         "linear_curving_limit": (None if getattr(linear, "limit", None) is None
                                  else linear.limit.to_dict()),
         "warnings": list(getattr(result, "warnings", [])),
-        "limits": ([] if getattr(result, "limit", None) is None
-                   else [lim.to_dict() for lim in result.limit.limits]),
+        "limits": [lim.to_dict() for lim in getattr(result, "limits", [])],
         "curving_limit": (None if getattr(result, "limit", None) is None
                           else result.limit.to_dict()),
         "bracketed": bool(result.bracketed),
