@@ -294,15 +294,16 @@ def test_the_blow_off_limits_the_yaw_damper_force_on_curve_entry(curve_entry) ->
 
 def test_stability_in_a_curve_moves_with_the_cant_deficiency() -> None:
     # 4000 m, 150 mm: the equilibrium loses stability below the straight track's Hopf
-    # point (the steady creep forces use up part of the adhesion), and the search and
-    # the eigenvalues agree.
+    # point (the steady creep forces use up part of the adhesion), between 330 and
+    # 380 km/h, but there the cant deficiency (about 0.2 m) is beyond the model's range
+    # (0.165 m, reached at 328 km/h): the linear search stops at that curving limit, as
+    # the nonlinear one does, and the eigenvalues agree below it.
     curve = Curve(4000.0, cant=0.15)
     lin = railhunt.linear_critical_speed(PAPER, curve=curve)
-    assert 330 < lin.speed_kmh < 380
-    below = curving(PAPER, lin.speed_kmh - 5, curve)
-    above = curving(PAPER, lin.speed_kmh + 5, curve)
-    assert below.stable and not above.stable
-    assert 2.0 < lin.frequency_hz < 3.0
+    assert math.isnan(lin.speed_kmh) and lin.limit.speed_kmh == pytest.approx(328.0, abs=1.0)
+    assert {lim.name for lim in lin.limits} == {"cant deficiency"}
+    assert curving(PAPER, lin.limit.last_valid_kmh, curve).stable
+    assert not curving(PAPER, 380.0, curve).stable  # beyond the limit, not searched
 
 
 def test_vehicle_files_written_before_the_bump_stop_still_load(tmp_path) -> None:

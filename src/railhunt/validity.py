@@ -275,6 +275,30 @@ def run_limits(result: Any, model: Any, excitation: object = None) -> list[Limit
     return out
 
 
+def record_limits(model: Any, speed: float, t: np.ndarray, x: np.ndarray,
+                  excitation: object = None) -> list[Limit]:  # fmt: skip
+    """Every limit a run on straight track reaches, from its bare record: times ``t`` (s)
+    and states ``x`` at ``speed`` (m/s) over ``excitation``, its wheel forces derived
+    as :func:`railhunt.simulate` derives them (:func:`run_limits`)."""
+    from railhunt.channels import derived_channels
+
+    derived = derived_channels(t, x, *model.args(speed, excitation), model.layout)
+    return run_limits(_Record(t, x, speed, derived), model, excitation)
+
+
+@dataclass(frozen=True)
+class _Record:
+    """The part of a simulated run :func:`run_limits` reads."""
+
+    t: np.ndarray
+    x: np.ndarray
+    speed: float
+    derived: dict
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        return self.derived[name]
+
+
 class _Times:
     """``where[i]`` of a run: ``"t = 1.234 s"``, formatted only for the row reported."""
 
@@ -291,4 +315,5 @@ def warnings_of(limits: list[Limit]) -> list[str]:
 
 
 __all__ = ["Limit", "check_wheels", "check_motion", "check_cant_deficiency",
-           "curving_limits", "run_limits", "flange_clearance", "warnings_of"]
+           "curving_limits", "run_limits", "record_limits", "flange_clearance",
+           "warnings_of"]  # fmt: skip

@@ -18,8 +18,8 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from railhunt.analysis.curving import CurvingError, EquilibriumPath
-from railhunt.analysis.curving_limit import curving_limit
+from railhunt.analysis.curving import EquilibriumPath
+from railhunt.analysis.curving_limit import capped_at_curving_limit
 from railhunt.analysis.modes import least_damped_rate
 from railhunt.analysis.search import bracket_and_bisect, check_search
 from railhunt.curve import Curve
@@ -31,6 +31,7 @@ from railhunt.simulation import Y_LIMIT, auto_step, excitation_end_time, integra
 from railhunt.stepsize import check_step
 from railhunt.track import SampledTrack, SingleDefect, check_excitation
 from railhunt.units import kmh_to_ms
+from railhunt.validity import record_limits
 from railhunt.vehicle import Vehicle
 from railhunt.verdicts import (
     BLOW_UP,
@@ -97,6 +98,7 @@ class Trial:
     decided: bool  # False when max_duration ran out and the trend decided
     status: str  # integrator status ("ok", "derailed", ...)
     reason: str = ""  # why an undecided, derailed or blow-up trial is so, in words
+    limits: list = field(default_factory=list)  # validity limits the run reached (straight)
 
 
 @dataclass(repr=False)
@@ -131,6 +133,14 @@ class CriticalSpeedResult(ResultDisplay):
         return bool(self.limit is not None and self.limit.reached)
 
     @property
+    def limits(self) -> list:
+        """Every limit reached (:class:`railhunt.validity.Limit`): the curving limit's,
+        then each trial's, its place naming the trial's speed."""
+        return (list(self.limit.limits) if self.limit_reached else []) + [
+            replace(lim, place=f"{lim.place}, {t.speed_kmh:g} km/h") for t in self.trials
+            for lim in t.limits]  # fmt: skip
+
+    @property
     def first_hunting_kmh(self) -> float:
         """Lowest speed judged not stable (hunting, undecided, derailed or blow-up; km/h)."""
         hunting = [t.speed_kmh for t in self.trials if t.verdict != STABLE]
@@ -149,6 +159,8 @@ class CriticalSpeedResult(ResultDisplay):
             if t.verdict in (UNDECIDED, DERAILED, BLOW_UP):
                 out.append(f"{t.speed_kmh:g} km/h: {t.verdict}"
                            + (f" ({t.reason})" if t.reason else ""))  # fmt: skip
+        out += [f"{t.speed_kmh:g} km/h: limit reached: {lim.text}" for t in self.trials
+                for lim in t.limits]  # fmt: skip
         if self.undecided:
             out.append(f"{len(self.undecided)} trial(s) undecided, counted as not stable: the "
                        "critical speed is the highest speed whose motion died out")  # fmt: skip
@@ -477,13 +489,17 @@ def run_trial(
     ``route`` and ``reference``: a curve's steady route and its equilibrium (see
     :func:`run_until_verdict`).
     """
-    verdict, t, _, code, amp, rate, decided = run_until_verdict(
+    verdict, t, x, code, amp, rate, decided = run_until_verdict(
         model, speed_kmh, judgement, excitation, method=method, dt=dt, output_dt=output_dt,
         route=route, reference=reference,
     )  # fmt: skip
     status = STATUS_NAMES[code]
+    # The dynamic limits reached on straight track (a curve's search stops at its steady
+    # state's); they inform and change no verdict.
+    limits = (record_limits(model, kmh_to_ms(speed_kmh), t, x, excitation) if route is None
+              else [])  # fmt: skip
     return Trial(speed_kmh, verdict, amp, rate, float(t[-1]), decided, status,
-                 trial_reason(verdict, amp, rate, decided, float(t[-1]), status))
+                 trial_reason(verdict, amp, rate, decided, float(t[-1]), status), limits)
 
 
 def critical_speed(
@@ -556,18 +572,10 @@ def critical_speed(
     if dt is not None and method == "rk4":
         check_step(model, kmh_to_ms(start_kmh), dt)
 
-    path = None if curve is None else EquilibriumPath(model, curve)
-    limit = None
+    path, limit = (None, None) if curve is None else (EquilibriumPath(model, curve), None)
     if path is not None:  # the search stops at the first limit of the steady state
-        limit = curving_limit(path, min_kmh, max_kmh, step_kmh, tol_kmh)
+        limit, max_kmh = capped_at_curving_limit(path, curve, min_kmh, max_kmh, step_kmh, tol_kmh)
         if limit.reached:
-            if not math.isfinite(limit.last_valid_kmh):  # nothing inside the envelope
-                raise CurvingError(
-                    f"curve = {curve!r}: the steady-curving state is beyond the validity "
-                    f"envelope already at the lowest speed of the search, {min_kmh:g} km/h "
-                    f"({limit.text}); there is no speed to search: choose a wider curve"
-                )
-            max_kmh = limit.last_valid_kmh
             start_kmh = min(start_kmh, max_kmh)
             step_kmh = min(step_kmh, max(max_kmh - min_kmh, tol_kmh))
 
@@ -588,8 +596,5 @@ def critical_speed(
 
     lo, _, bracketed = bracket_and_bisect(lambda kmh: verdict(kmh) != STABLE, start_kmh,
                                           step_kmh, tol_kmh, min_kmh, max_kmh)  # fmt: skip
-    if not bracketed:
-        return CriticalSpeedResult(math.nan, trials, bracketed=False, excitation=excitation,
-                                   curve=curve, limit=limit)  # fmt: skip
-    return CriticalSpeedResult(lo, trials, bracketed=True, excitation=excitation, curve=curve,
-                               limit=limit)
+    return CriticalSpeedResult(lo if bracketed else math.nan, trials, bracketed=bracketed,
+                               excitation=excitation, curve=curve, limit=limit)

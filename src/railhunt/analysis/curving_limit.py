@@ -16,8 +16,7 @@ import numpy as np
 from railhunt.analysis.curving import CurvingError, curving_state
 from railhunt.validity import Limit
 
-__all__ = ["CurvingLimit", "curving_limit"]
-
+__all__ = ["CurvingLimit", "capped_at_curving_limit", "curving_limit"]
 
 
 @dataclass(frozen=True)
@@ -102,3 +101,36 @@ def curving_limit(path: Any, min_kmh: float, max_kmh: float, step_kmh: float = 1
                 lo = mid
         return CurvingLimit(hi, lo, at_hi)
     return CurvingLimit(math.nan, last, ())
+
+
+def capped_at_curving_limit(path: Any, curve: Any, min_kmh: float, max_kmh: float,
+                            step_kmh: float = 10.0,
+                            tol_kmh: float = 1.0) -> tuple[CurvingLimit, float]:  # fmt: skip
+    """The curving limit of a search in a curve and the top speed it leaves to search.
+
+    Every search about the steady-curving state (:func:`railhunt.critical_speed`,
+    :func:`railhunt.linear_critical_speed`) stops at the last speed inside the validity
+    envelope.
+
+    Returns
+    -------
+    limit : CurvingLimit
+        :func:`curving_limit` over ``[min_kmh, max_kmh]``.
+    top_kmh : float
+        ``limit.last_valid_kmh`` when a limit is reached, else ``max_kmh`` (km/h).
+
+    Raises
+    ------
+    CurvingError
+        When the state is beyond the envelope already at ``min_kmh``: nothing to search.
+    """
+    limit = curving_limit(path, min_kmh, max_kmh, step_kmh, tol_kmh)
+    if not limit.reached:
+        return limit, max_kmh
+    if not math.isfinite(limit.last_valid_kmh):  # nothing inside the envelope
+        raise CurvingError(
+            f"curve = {curve!r}: the steady-curving state is beyond the validity "
+            f"envelope already at the lowest speed of the search, {min_kmh:g} km/h "
+            f"({limit.text}); there is no speed to search: choose a wider curve"
+        )
+    return limit, limit.last_valid_kmh

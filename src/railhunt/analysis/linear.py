@@ -19,6 +19,7 @@ import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
 from railhunt.analysis.curving import EquilibriumPath
+from railhunt.analysis.curving_limit import capped_at_curving_limit
 from railhunt.analysis.modes import (
     eigenvalues,
     hunting_mode_index,
@@ -101,6 +102,10 @@ class LinearCriticalSpeed(ResultDisplay):
     unstable_from_kmh : float
         When the equilibrium is already unstable at the lowest speed searched: that speed
         (km/h; ``speed_kmh`` is then NaN, there is no crossing); else NaN.
+    limit : CurvingLimit or None
+        In a curve, the first limit of the validity envelope the steady-curving state
+        reaches (:func:`railhunt.analysis.curving_limit.curving_limit`); the search stops
+        below it. None on straight track.
     """
 
     speed_kmh: float
@@ -109,6 +114,22 @@ class LinearCriticalSpeed(ResultDisplay):
     is_hunting_mode: bool
     crossing: str = ""
     unstable_from_kmh: float = math.nan
+    limit: object = None
+
+    @property
+    def limit_reached(self) -> bool:
+        """True when the search stopped at a limit of the validity envelope."""
+        return bool(self.limit is not None and self.limit.reached)
+
+    @property
+    def limits(self) -> list:
+        """The limits reached where the search stopped (:class:`railhunt.validity.Limit`)."""
+        return list(self.limit.limits) if self.limit_reached else []
+
+    @property
+    def warnings(self) -> list[str]:
+        """What the answer must be read with: the curving limit the search stopped at."""
+        return [f"limit reached: {self.limit.text}"] if self.limit_reached else []
 
     @property
     def text(self) -> str:
@@ -117,6 +138,9 @@ class LinearCriticalSpeed(ResultDisplay):
             kind = ("real eigenvalue: divergence" if self.crossing == "divergence"
                     else f"complex pair at {self.frequency_hz:.2f} Hz")  # fmt: skip
             return f"unstable at every speed from {self.unstable_from_kmh:g} km/h ({kind})"
+        if not math.isfinite(self.speed_kmh) and self.limit_reached:
+            return (f"not found (stable up to {self.limit.last_valid_kmh:g} km/h, where the "
+                    f"search stopped: limit reached, {self.limit.text})")  # fmt: skip
         if not math.isfinite(self.speed_kmh):
             return "not found (stable at every speed searched)"
         if self.crossing == "divergence":
@@ -240,7 +264,11 @@ def linear_critical_speed(
         (:func:`railhunt.curving`) instead of the centred state on straight track. The
         equilibrium moves with speed as the cant deficiency changes; it is followed from
         each speed to the next. A callable gives the curve at each speed in m/s (a fixed
-        cant deficiency, :func:`railhunt.curve.fixed_deficiency`).
+        cant deficiency, :func:`railhunt.curve.fixed_deficiency`). The search stops at the
+        first limit of the validity envelope the steady-curving state reaches, as
+        :func:`railhunt.critical_speed` does (``.limit``, ``.warnings``); it raises
+        :class:`~railhunt.analysis.curving.CurvingError` when the state is beyond it
+        already at ``min_kmh``.
 
     Returns
     -------
@@ -256,11 +284,14 @@ def linear_critical_speed(
             f"min_kmh = {min_kmh} km/h is invalid: must be below max_kmh = {max_kmh} km/h"
         )
     model = Model(vehicle, creep_law=creep_law, contact=contact)
+    limit = None
     if curve is None:
         def jacobian_at(kmh: float) -> np.ndarray:
             return model.jacobian(kmh_to_ms(kmh))
     else:
-        jacobian_at = EquilibriumPath(model, curve).jacobian_kmh
+        path = EquilibriumPath(model, curve)
+        jacobian_at = path.jacobian_kmh
+        limit, max_kmh = capped_at_curving_limit(path, curve, min_kmh, max_kmh)
 
     def growth(kmh: float) -> float:
         return float(np.max(np.linalg.eigvals(jacobian_at(kmh)).real))
@@ -274,7 +305,7 @@ def linear_critical_speed(
         real = abs(w[k].imag) < 1e-9
         return LinearCriticalSpeed(math.nan, abs(w[k].imag) / (2 * math.pi), complex(w[k]),
                                    False, "divergence" if real else "hopf",
-                                   float(grid[0]))  # fmt: skip
+                                   float(grid[0]), limit=limit)  # fmt: skip
     else:
         for i in range(1, grid.size):
             values.append(growth(grid[i]))
@@ -288,7 +319,8 @@ def linear_critical_speed(
                     bracket = (grid[i - 2], float(peak.x))
                     break
         if bracket is None:
-            return LinearCriticalSpeed(math.nan, math.nan, complex(math.nan), False)
+            return LinearCriticalSpeed(math.nan, math.nan, complex(math.nan), False,
+                                       limit=limit)  # fmt: skip
         speed = brentq(growth, *bracket, xtol=tol_kmh)
     w, vecs = sorted_eig(jacobian_at(speed))
     k = crossing_index(w, sorted_eig(jacobian_at(speed + max(tol_kmh, 0.05)))[0])
@@ -300,4 +332,5 @@ def linear_critical_speed(
                       or moves_the_wheelsets(vecs[:model.layout.n_dof, kk], model.half_gauge,
                                              model.layout))  # fmt: skip
     return LinearCriticalSpeed(float(speed), abs(w[k].imag) / (2 * math.pi), complex(w[k]),
-                               is_hunting, "divergence" if abs(w[k].imag) < 1e-9 else "hopf")
+                               is_hunting, "divergence" if abs(w[k].imag) < 1e-9 else "hopf",
+                               limit=limit)  # fmt: skip

@@ -119,6 +119,9 @@ class Assessment(ResultDisplay):
         The limits (N, m/s²).
     status : str
         Integrator status of the run (``"derailed"`` counts as unstable).
+    limits : list of Limit
+        The limits of the validity envelope the run reaches (:mod:`railhunt.validity`:
+        Y/Q, ΣY, unloading, flange clearance, ...), as its :class:`SimulationResult` has them.
     """
 
     speed_kmh: float
@@ -129,6 +132,12 @@ class Assessment(ResultDisplay):
     sum_y_limit: float
     acceleration_limit: float
     status: str = "ok"
+    limits: list = field(default_factory=list)
+
+    @property
+    def warnings(self) -> list[str]:
+        """The limits the run reached, in words, each with the run's speed."""
+        return [f"{self.speed_kmh:g} km/h: limit reached: {lim.text}" for lim in self.limits]
 
     @property
     def sum_y_ratio(self) -> float:
@@ -296,6 +305,7 @@ def assess(
         speed_kmh=result.speed_kmh, f0_hz=f0, distance=centres, sum_y_rms=rms_y,
         acceleration_rms=rms_a, sum_y_limit=sum_y_limit(vehicle),
         acceleration_limit=acceleration_limit(vehicle), status=result.status,
+        limits=list(getattr(result, "limits", [])),
     )  # fmt: skip
 
 
@@ -363,6 +373,20 @@ class StochasticCriticalSpeedResult(ResultDisplay):
     trials: list[Assessment] = field(default_factory=list)
     bracketed: bool = True
     irregularity: SampledTrack | None = None
+
+    @property
+    def limits(self) -> list:
+        """Every limit of the validity envelope a run reached
+        (:class:`railhunt.validity.Limit`, its place naming the run's speed)."""
+        from dataclasses import replace
+
+        return [replace(lim, place=f"{lim.place}, {a.speed_kmh:g} km/h")
+                for a in self.trials for lim in a.limits]  # fmt: skip
+
+    @property
+    def warnings(self) -> list[str]:
+        """What the answer must be read with: the limits the runs reached, run by run."""
+        return [w for a in self.trials for w in a.warnings]
 
     def _summary(self) -> list[Row]:
         track = getattr(self.irregularity, "spectrum", None)

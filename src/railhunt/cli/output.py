@@ -183,6 +183,10 @@ def linear_critical_speed_line(linear: Any, curved: bool = False) -> str:
     if math.isfinite(getattr(linear, "unstable_from_kmh", math.nan)) or (
             getattr(linear, "crossing", "") == "divergence"):  # fmt: skip
         return f"linear critical speed: {linear.text}"
+    if not math.isfinite(linear.speed_kmh) and getattr(linear, "limit_reached", False):
+        return (f"linear critical speed: none up to {linear.limit.last_valid_kmh:g} km/h (the "
+                "steady-curving equilibrium stays stable up to where the search stopped: "
+                f"limit reached, {linear.limit.text})")  # fmt: skip
     if not math.isfinite(linear.speed_kmh):
         state = "the steady-curving equilibrium" if curved else "centred running"
         return f"linear critical speed: none below 1000 km/h ({state} stays stable)"

@@ -188,17 +188,7 @@ def critical_speed_command(
             curve=curve,
         )
         on_trial(None)
-        limit = getattr(result, "limit", None)
-        top = 1000.0  # in a curve, the linear search stops at the first curving limit too
-        if limit is not None and limit.reached:
-            top = limit.last_valid_kmh if limit.last_valid_kmh == limit.last_valid_kmh else 0.0
-        if top > 21.0:
-            linear = linear_critical_speed(vehicle, curve=curve, max_kmh=top)
-        else:
-            from railhunt.analysis.linear import LinearCriticalSpeed
-
-            linear = LinearCriticalSpeed(float("nan"), float("nan"), complex(float("nan")),
-                                         False)  # fmt: skip
+        linear = linear_critical_speed(vehicle, curve=curve)  # stops at the curving limit
 
     if as_json:
         data = _critical_json(vehicle, excitation, tol_kmh, result, linear)
@@ -345,9 +335,11 @@ def _critical_json(
         "linear_crossing_is_hunting_mode": bool(linear.is_hunting_mode),
         "linear_crossing": getattr(linear, "crossing", ""),
         "linear_unstable_from_kmh": getattr(linear, "unstable_from_kmh", None),
+        "linear_warnings": list(getattr(linear, "warnings", [])),
+        "linear_curving_limit": (None if getattr(linear, "limit", None) is None
+                                 else linear.limit.to_dict()),
         "warnings": list(getattr(result, "warnings", [])),
-        "limits": ([] if getattr(result, "limit", None) is None
-                   else [lim.to_dict() for lim in result.limit.limits]),
+        "limits": [lim.to_dict() for lim in getattr(result, "limits", [])],
         "curving_limit": (None if getattr(result, "limit", None) is None
                           else result.limit.to_dict()),
         "bracketed": bool(result.bracketed),

@@ -88,6 +88,8 @@ def report_stochastic_critical_speed(
             "linear_crossing_is_hunting_mode": bool(linear.is_hunting_mode),
             "bracketed": bool(result.bracketed),
             "tol_kmh": tol_kmh,
+            "warnings": result.warnings,
+            "limits": [lim.to_dict() for lim in result.limits],
             "vehicle": vehicle.name,
             "irregularity": {
                 "spectrum": getattr(track, "spectrum", "measured"),
@@ -118,6 +120,7 @@ def report_stochastic_critical_speed(
                     if a.acceleration_rms.size else None,
                     "acceleration_ratio": a.acceleration_ratio,
                     "status": a.status,
+                    "limits": [lim.to_dict() for lim in a.limits],
                 }
                 for a in result.trials
             ],
@@ -159,6 +162,8 @@ def report_stochastic_critical_speed(
         why = ("every trial speed up to 800 km/h met the criterion" if verdicts == {"stable"}
                else "every trial speed down to 20 km/h broke the criterion")  # fmt: skip
         console.print(f"stochastic critical speed: not found ({why})")
+    for warning in result.warnings:
+        console.print(f"[yellow]warning: {warning}[/yellow]")
     console.print(linear_critical_speed_line(linear))
 
 
