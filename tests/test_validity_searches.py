@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 
+import numpy as np
 import pytest
 from click.testing import CliRunner
 
@@ -73,3 +74,21 @@ def test_the_critical_speed_json_lists_the_trials_limits():
     assert any(w.startswith("310 km/h: limit reached: Y/Q") for w in data["warnings"])
     assert any(d["name"] == "Y/Q" and d["place"].endswith("310 km/h") for d in data["limits"])
     assert data["linear_warnings"] == [] and data["linear_curving_limit"] is None
+
+
+def test_a_run_is_judged_on_2_m_sliding_means_as_en_14363_judges_it():
+    """An impact's single-sample peak of Y/Q is not a limit in a run; Y/Q held over more
+    than the window is. A steady state (window 1) is judged row by row."""
+    from railhunt.validity import check_wheels, sliding_mean
+
+    q0 = 50e3
+    Q = np.full((200, 2), q0)
+    spike = np.zeros((200, 2))
+    spike[100, 0] = 1.5 * q0
+    held = np.zeros((200, 2))
+    held[50:150, 0] = 0.9 * q0
+    none = np.zeros((200, 1))
+    assert [lim.name for lim in check_wheels(spike, Q, none, q0)] == ["Y/Q"]
+    assert check_wheels(spike, Q, none, q0, window=20) == []
+    assert [lim.name for lim in check_wheels(held, Q, none, q0, window=20)] == ["Y/Q"]
+    assert sliding_mean(np.arange(6.0), 3).tolist() == [0.0, 0.5, 1.0, 2.0, 3.0, 4.0]

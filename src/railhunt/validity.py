@@ -43,6 +43,8 @@ UNLOADING_LIMIT = 0.6
 Q_FLOOR = 0.01
 #: Prud'homme: sum Y <= PRUDHOMME_A + PRUDHOMME_B * Q0 (N; EN 14363 with alpha = 1).
 PRUDHOMME_A, PRUDHOMME_B = 10e3, 2.0 / 3.0
+#: Length of track over which EN 14363 takes the sliding means of Y/Q and ΣY in a run (m).
+SLIDING_MEAN_M = 2.0
 #: Largest cant deficiency railhunt's curving model is meant for (m).
 CANT_DEFICIENCY_LIMIT = 0.165
 #: Travel of the bump stop's rubber beyond its free play taken as the end of travel (m).
@@ -126,8 +128,21 @@ def _worst(values: np.ndarray, names: tuple[str, ...]) -> tuple[float, str, int]
     return float(values[row, col]), names[col], int(row)
 
 
+def sliding_mean(a: np.ndarray, window: int) -> np.ndarray:
+    """Mean of ``window`` consecutive rows of ``a`` (axis 0), row ``i`` ending at ``i``;
+    the first ``window - 1`` rows average what there is so far."""
+    a = np.asarray(a, dtype=float)
+    if window <= 1 or a.shape[0] == 0:
+        return a
+    c = np.cumsum(np.nan_to_num(a), axis=0)
+    out = c.copy()
+    out[window:] = c[window:] - c[:-window]
+    counts = np.minimum(np.arange(1, a.shape[0] + 1), window).astype(float)
+    return out / counts.reshape((-1,) + (1,) * (a.ndim - 1))
+
+
 def check_wheels(Y: np.ndarray, Q: np.ndarray, sum_Y: np.ndarray, q0: float,
-                 where: list[str] | None = None) -> list[Limit]:  # fmt: skip
+                 where: list[str] | None = None, window: int = 1) -> list[Limit]:  # fmt: skip
     """Limits on the wheel/rail forces: Y/Q, unloading, lift and ΣY.
 
     Parameters
@@ -141,12 +156,18 @@ def check_wheels(Y: np.ndarray, Q: np.ndarray, sum_Y: np.ndarray, q0: float,
         Static wheel load (N).
     where : list of str, optional
         What each row is (e.g. ``"t = 3.2 s"``); default ``"row i"``.
+    window : int
+        For the rows of a run in time: Y/Q and ΣY are judged on their sliding means over
+        this many rows, as EN 14363 judges them on 2 m sliding means (an impact's
+        instantaneous peak is not the standard's quantity); 1: each row alone (a steady
+        state).
     """
     Y, Q, sum_Y = (np.atleast_2d(np.asarray(a, dtype=float)) for a in (Y, Q, sum_Y))
     where = where or [f"row {i}" for i in range(Y.shape[0])]
     out: list[Limit] = []
     _WHEELS = _wheel_names(sum_Y.shape[1])  # noqa: N806 (a table of names)
-    yq = Y / Q
+    yq = sliding_mean(Y / Q, window)
+    sum_Y = sliding_mean(sum_Y, window)
     if np.nanmax(yq) > YQ_LIMIT:
         value, wheel, row = _worst(yq, _WHEELS)
         out.append(Limit("Y/Q", YQ_LIMIT, value, "1", f"{wheel}, {where[row]}", "EN 14363"))
@@ -267,7 +288,10 @@ def run_limits(result: Any, model: Any, excitation: object = None) -> list[Limit
         Y = np.column_stack([result[f"Y_{w}{s}"] for w in ws for s in "LR"])
         Q = np.column_stack([result[f"Q_{w}{s}"] for w in ws for s in "LR"])
         sum_y = np.column_stack([result[f"SY_{w}"] for w in ws])
-        out += check_wheels(Y, Q, sum_y, q0, where)
+        # EN 14363's 2 m sliding means, in samples of the run's output step
+        step = float(np.median(np.diff(t))) if t.size > 1 else 0.0
+        window = max(1, round(SLIDING_MEAN_M / (float(result.speed) * step))) if step > 0 else 1
+        out += check_wheels(Y, Q, sum_y, q0, where, window=window)
     trk = model.system(excitation)
     track_y = rail_offsets(t, float(result.speed), trk.wheelset_delay, trk.track,
                            trk.track_samples)  # fmt: skip
