@@ -110,6 +110,20 @@ def output_options_from(curve_radius: float | None, cant: float | None, curve_sp
         raise CliError(text) from None
 
 
+def factor_flags(func: Any) -> Any:
+    """The factors of a study: ``NAME ... --from A --to B | --tolerance T`` (read back by
+    :func:`factors_from`), for ``railhunt sensitivity`` and ``railhunt optimize``."""
+    func = click.option("--tolerance", "tolerances", type=float, multiple=True, metavar="T",
+                        help="The preceding NAME varies within ±T of the vehicle's value "
+                        "(fraction).")(func)  # fmt: skip
+    func = click.option("--to", "tos", type=float, multiple=True, metavar="VALUE",
+                        help="End of the preceding NAME's range (SI).")(func)
+    func = click.option("--from", "froms", type=float, multiple=True, metavar="VALUE",
+                        help="Start of the preceding NAME's range (SI).")(func)
+    return click.argument("names", nargs=-1,
+                          metavar="NAME --from A --to B | --tolerance T ...")(func)
+
+
 def curve_flags(func: Any) -> Any:
     """``--curve-radius M``, ``--cant MM``, ``--curve-speed KMH`` and ``--damping-range``."""
     func = click.option("--damping-range", "damping_range", type=float, nargs=2,

@@ -12,6 +12,7 @@ from railhunt.cli.errors import CliError
 from railhunt.cli.factors import (
     FactorCommand,
     curve_flags,
+    factor_flags,
     factors_from,
     output_columns,
     output_options_from,
@@ -53,13 +54,7 @@ Example:
 
 @click.command("optimize", cls=FactorCommand, rules=STUDY_RULES, help=_HELP,
                short_help="Pareto front of objectives by NSGA-II.")
-@click.argument("names", nargs=-1, metavar="NAME --from A --to B | --tolerance T ...")
-@click.option("--from", "froms", type=float, multiple=True, metavar="VALUE",
-              help="Start of the preceding NAME's range (SI).")
-@click.option("--to", "tos", type=float, multiple=True, metavar="VALUE",
-              help="End of the preceding NAME's range (SI).")
-@click.option("--tolerance", "tolerances", type=float, multiple=True, metavar="T",
-              help="The preceding NAME varies within ±T of the vehicle's value (fraction).")
+@factor_flags
 @click.option("--objective", "objectives", multiple=True, metavar="'max|min COLUMN'",
               help="An objective (repeat: at least two).")
 @click.option("--constraint", "constraints", multiple=True, metavar="'COLUMN >= VALUE'",

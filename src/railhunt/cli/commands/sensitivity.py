@@ -11,6 +11,7 @@ from railhunt.cli.commands.sweep import parse_tie_option
 from railhunt.cli.factors import (
     FactorCommand,
     curve_flags,
+    factor_flags,
     factors_from,
     output_columns,
     output_options_from,
@@ -74,13 +75,7 @@ def announce_points(vehicle, factors, xs, names, columns, workers, scheduler) ->
 
 @click.command("sensitivity", cls=FactorCommand, rules=STUDY_RULES, help=_HELP,
                short_help="Sobol / Morris sensitivity indices of outputs.")
-@click.argument("names", nargs=-1, metavar="NAME --from A --to B | --tolerance T ...")
-@click.option("--from", "froms", type=float, multiple=True, metavar="VALUE",
-              help="Start of the preceding NAME's range (SI).")
-@click.option("--to", "tos", type=float, multiple=True, metavar="VALUE",
-              help="End of the preceding NAME's range (SI).")
-@click.option("--tolerance", "tolerances", type=float, multiple=True, metavar="T",
-              help="The preceding NAME varies within ±T of the vehicle's value (fraction).")
+@factor_flags
 @click.option("--method", type=click.Choice(["sobol", "morris"]), default="sobol",
               show_default=True, help="Sobol (Saltelli sample) or Morris (trajectories).")
 @click.option("--samples", type=int, default=256, show_default=True, metavar="N",
