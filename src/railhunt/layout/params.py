@@ -16,7 +16,7 @@ from typing import Any
 
 from railhunt.layout.expressions import Expression, ExpressionError, evaluate_parameters
 from railhunt.layout.parse import consistency_rule
-from railhunt.layout.spec import ConsistencyRule, LayoutError
+from railhunt.layout.spec import ConsistencyRule, LayoutError, check_keys
 from railhunt.vehicle.rules import FINITE, NONNEGATIVE, POSITIVE, ParameterSpec, Rule
 
 __all__ = ["NAMED_RULES", "PARAMETER_KEYS", "ParameterTable", "parse_parameters", "rule_name"]
@@ -111,10 +111,7 @@ def parse_parameters(table: object, where: str) -> ParameterTable:
             raise LayoutError(f"{where}: parameter name {name!r} is not a name "
                               "(letters, digits, _)")  # fmt: skip
         if isinstance(entry, dict):
-            bad = set(entry) - PARAMETER_KEYS
-            if bad:
-                raise LayoutError(f"{where}: [parameters.{name}]: unknown key(s) {sorted(bad)}; "
-                                  f"allowed: {', '.join(sorted(PARAMETER_KEYS))}")  # fmt: skip
+            check_keys(entry, PARAMETER_KEYS, f"{where}: [parameters.{name}]")
             if "value" not in entry:
                 raise LayoutError(f"{where}: [parameters.{name}]: missing 'value'")
             value = entry["value"]

@@ -24,6 +24,7 @@ from railhunt.layout.spec import (
     ElementSpec,
     LayoutError,
     LayoutSpec,
+    check_keys,
 )
 
 __all__ = ["BODY_KEYS", "ELEMENT_KEYS", "WHEEL_RAIL_KEYS", "parse_layout"]
@@ -117,10 +118,7 @@ def _bodies(table: object, where: str) -> list[BodySpec]:
         if not isinstance(entry, dict):
             raise LayoutError(f"{where}: [[body]] number {k + 1} is not a table")
         label = f"{where}: [[body]] {entry.get('name', f'number {k + 1}')!r}"
-        bad = set(entry) - BODY_KEYS
-        if bad:
-            raise LayoutError(f"{label}: unknown key(s) {sorted(bad)}; allowed: "
-                              f"{', '.join(sorted(BODY_KEYS))}")  # fmt: skip
+        check_keys(entry, BODY_KEYS, label)
         name = entry.get("name")
         if not isinstance(name, str) or not name.isidentifier():
             raise LayoutError(f"{label}: needs a name (letters, digits, _)")
@@ -190,10 +188,7 @@ def _elements(table: object, bodies: set[str], where: str) -> list[ElementSpec]:
         if not isinstance(entry, dict):
             raise LayoutError(f"{where}: [[element]] number {k + 1} is not a table")
         label = f"{where}: [[element]] {entry.get('name', f'number {k + 1}')!r}"
-        bad = set(entry) - ELEMENT_KEYS
-        if bad:
-            raise LayoutError(f"{label}: unknown key(s) {sorted(bad)}; allowed: "
-                              f"{', '.join(sorted(ELEMENT_KEYS))}")  # fmt: skip
+        check_keys(entry, ELEMENT_KEYS, label)
         kind = entry.get("kind")
         if kind not in LAWS:
             raise LayoutError(f"{label}: kind = {kind!r} is unknown; use one of "
@@ -263,10 +258,7 @@ def _mirrored(p: tuple[Expression, Expression, Expression]) -> tuple[Expression,
 def _wheel_rail(table: object, where: str) -> tuple[tuple[str, object], ...]:
     if not isinstance(table, dict):
         raise LayoutError(f"{where}: must be a table")
-    bad = set(table) - WHEEL_RAIL_KEYS
-    if bad:
-        raise LayoutError(f"{where}: unknown key(s) {sorted(bad)}; allowed: "
-                          f"{', '.join(sorted(WHEEL_RAIL_KEYS))}")  # fmt: skip
+    check_keys(table, WHEEL_RAIL_KEYS, where)
     out: list[tuple[str, object]] = []
     for key, value in table.items():
         if key in WHEEL_RAIL_TEXT:

@@ -56,6 +56,14 @@ class LayoutError(ValueError):
     to do. Raised before any computation."""
 
 
+def check_keys(table: dict, allowed: frozenset[str] | set[str], label: str) -> None:
+    """Refuse keys of a file's ``table`` outside ``allowed``, naming them and ``label``."""
+    bad = set(table) - allowed
+    if bad:
+        raise LayoutError(f"{label}: unknown key(s) {sorted(bad)}; allowed: "
+                          f"{', '.join(sorted(allowed))}")  # fmt: skip
+
+
 @dataclass(frozen=True)
 class BodySpec:
     """One rigid body of the layout.
