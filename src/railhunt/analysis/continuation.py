@@ -500,7 +500,7 @@ def _release(model: Model, shoot: Shooting, speed_kmh: float, amplitude: float,
         return shoot.residual(np.append(w, vs))
 
     def jac_fun(w: np.ndarray, r: np.ndarray) -> np.ndarray:
-        return shoot.jacobian(np.append(w, vs), r)[:, :-1]
+        return shoot.jacobian(np.append(w, vs), r, speed=False)[:, :-1]
 
     w, norm, it, ok, _ = newton(fun, jac_fun, u[:-1], tol=1e-9, max_iter=20)
     if not ok:

@@ -24,7 +24,7 @@ import numpy as np
 from railhunt.analysis.critical import HUNTING, STABLE, Judgement, run_until_verdict
 from railhunt.analysis.hunting_branch import hunting_mode_at
 from railhunt.analysis.modes import eigenvalues
-from railhunt.analysis.periodic import periodic_orbit, phase_origin
+from railhunt.analysis.periodic import phase_origin, shoot_orbit
 from railhunt.model import Model
 from railhunt.results import Columns, ResultDisplay, Row
 from railhunt.simulation import auto_step, integrate_model
@@ -355,8 +355,9 @@ def _refine_orbit(model: Model, speed_kmh: float, t: np.ndarray, x: np.ndarray, 
 
     Returns
     -------
-    orbit : PeriodicOrbit or None
-        The accepted orbit.
+    orbit : PeriodicOrbit or ShotOrbit or None
+        The accepted orbit (a :class:`~railhunt.analysis.periodic.ShotOrbit`, without
+        Floquet multipliers, when its amplitude decided).
     rejected : str
         Why no orbit was accepted ("" when one was).
     """
@@ -364,12 +365,15 @@ def _refine_orbit(model: Model, speed_kmh: float, t: np.ndarray, x: np.ndarray, 
     for k in _maxima(x[:, model.layout.y_w1], 3):
         start = _extremum_state(model, speed_kmh, t, x, k, dt)
         try:
-            orbit = periodic_orbit(model, speed_kmh, start, 1.0 / f_fft, dt=dt)
+            shot = shoot_orbit(model, speed_kmh, start, 1.0 / f_fft, dt=dt)
         except RuntimeError as exc:
             reasons.append(str(exc))
             continue
-        same_f = abs(orbit.frequency_hz - f_fft) < 0.1 * f_fft
-        if same_f and (abs(orbit.amplitude - amp) < 0.2 * amp or orbit.stable):
+        same_f = abs(shot.frequency_hz - f_fft) < 0.1 * f_fft
+        if same_f and abs(shot.amplitude - amp) < 0.2 * amp:
+            return shot, ""  # the simulated cycle: its stability is not needed
+        orbit = shot.orbit()
+        if same_f and orbit.stable:
             return orbit, ""
         reasons.append(f"the orbit found ({orbit.frequency_hz:.4g} Hz, "
                        f"{orbit.amplitude * 1e3:.3g} mm, {'stable' if orbit.stable else 'unstable'}"

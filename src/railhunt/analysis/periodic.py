@@ -26,6 +26,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -239,8 +240,13 @@ class Shooting:
             return np.full(self.n_state, np.inf)
         return self._residual_state(x0, period, speed)
 
-    def linearise(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    def linearise(self, u: np.ndarray, newton_only: bool = False, speed: bool = True,
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:  # fmt: skip
         """Derivatives of the end state by forward differences (40 flows).
+
+        ``newton_only`` skips the column of the phase-fixed rate (:meth:`jacobian` drops
+        it; the Floquet multipliers need it) and ``speed=False`` the speed derivative (a
+        fixed speed): one flow less each. A skipped column is NaN.
 
         Returns
         -------
@@ -251,25 +257,33 @@ class Shooting:
         d_period, d_speed : numpy.ndarray
             ``d x_end / d T`` (per s) and ``d x_end / d v`` (per m/s).
         """
-        x0, period, speed = self.unpack(u)
-        xe = self.end_state(x0, period, speed)
+        x0, period, v = self.unpack(u)
+        xe = self.end_state(x0, period, v)
         n = self.n_state
         m = np.empty((n, n))
         for k in range(n):
+            if newton_only and k == self.phase_index:
+                m[:, k] = np.nan
+                continue
             h = FD_STEP * self.scale[k]
             xp = x0.copy()
             xp[k] += h
-            m[:, k] = (self.end_state(xp, period, speed) - xe) / h
+            m[:, k] = (self.end_state(xp, period, v) - xe) / h
         hp = FD_STEP * 10 * self.T_SCALE
-        d_period = (self.end_state(x0, period + hp, speed) - xe) / hp
-        hv = FD_STEP * 10 * self.V_SCALE
-        d_speed = (self.end_state(x0, period, speed + hv) - xe) / hv
+        d_period = (self.end_state(x0, period + hp, v) - xe) / hp
+        d_speed = np.full(n, np.nan)
+        if speed:
+            hv = FD_STEP * 10 * self.V_SCALE
+            d_speed = (self.end_state(x0, period, v + hv) - xe) / hv
         return xe, m, d_period, d_speed
 
     def jacobian(self, u: np.ndarray, r0: np.ndarray | None = None,
-                 lin: tuple | None = None) -> np.ndarray:  # fmt: skip
-        """Jacobian of :meth:`residual` with respect to ``u`` (38 x 39)."""
-        _, m, d_period, d_speed = self.linearise(u) if lin is None else lin
+                 lin: tuple | None = None, speed: bool = True) -> np.ndarray:  # fmt: skip
+        """Jacobian of :meth:`residual` with respect to ``u`` (38 x 39); with
+        ``speed=False`` its last column (the speed derivative) is NaN, one flow saved."""
+        if lin is None:
+            lin = self.linearise(u, newton_only=True, speed=speed)
+        _, m, d_period, d_speed = lin
         n, scale = self.n_state, self.scale
         a = m + np.eye(n) if self.symmetric else m - np.eye(n)
         jac = np.empty((n, u.size))
@@ -347,6 +361,8 @@ def periodic_orbit(
 ) -> PeriodicOrbit:
     """Limit cycle at a fixed speed by shooting from a guess.
 
+    :func:`shoot_orbit` does the same without the Floquet multipliers.
+
     Parameters
     ----------
     vehicle_or_model : Vehicle or Model
@@ -370,6 +386,22 @@ def periodic_orbit(
     RuntimeError
         When Newton does not converge.
     """
+    return shoot_orbit(vehicle_or_model, speed_kmh, x0, period, symmetric, dt, tol,
+                       creep_law).orbit()  # fmt: skip
+
+
+def shoot_orbit(
+    vehicle_or_model,
+    speed_kmh: float,
+    x0: np.ndarray,
+    period: float,
+    symmetric: bool = True,
+    dt: float | None = None,
+    tol: float = 1e-8,
+    creep_law: str | None = None,
+) -> ShotOrbit:
+    """:func:`periodic_orbit` (same parameters and errors) up to its Floquet multipliers:
+    the converged shooting solution, whose :meth:`ShotOrbit.orbit` computes them."""
     model = vehicle_or_model if isinstance(vehicle_or_model, Model) else Model(
         vehicle_or_model, creep_law=creep_law)
     speed = kmh_to_ms(speed_kmh)
@@ -386,7 +418,7 @@ def periodic_orbit(
         return shoot.residual(np.append(w, vs))
 
     def jac_fun(w: np.ndarray, r: np.ndarray) -> np.ndarray:
-        return shoot.jacobian(np.append(w, vs), r)[:, :-1]
+        return shoot.jacobian(np.append(w, vs), r, speed=False)[:, :-1]
 
     w, norm, it, ok, _ = newton(fun, jac_fun, u0, tol=tol, max_iter=20)
     if not ok:
@@ -399,7 +431,44 @@ def periodic_orbit(
             f"shooting at {speed_kmh:.1f} km/h fell onto the equilibrium (which solves the "
             "shooting equations for any period): no limit cycle near the guess"
         )
-    return shoot.orbit(np.append(w, vs), norm, it)
+    return ShotOrbit(shoot, np.append(w, vs), norm, it)
+
+
+@dataclass
+class ShotOrbit:
+    """A converged shooting solution before its Floquet multipliers are computed (they
+    cost one more linearisation, 40 flows): :meth:`orbit` gives the
+    :class:`PeriodicOrbit`; ``period``, ``frequency_hz`` and the amplitudes do not
+    need them."""
+
+    shoot: Shooting
+    u: np.ndarray
+    residual: float
+    iterations: int
+
+    @property
+    def period(self) -> float:
+        """Period (s)."""
+        return self.shoot.unpack(self.u)[1]
+
+    @property
+    def frequency_hz(self) -> float:
+        """``1 / period`` (Hz)."""
+        return 1.0 / self.period
+
+    @cached_property
+    def wheelset_amplitudes(self) -> np.ndarray:
+        """Each wheelset's amplitude over the orbit (m), as :class:`PeriodicOrbit`'s."""
+        return self.shoot.amplitudes(*self.shoot.unpack(self.u))
+
+    @property
+    def amplitude(self) -> float:
+        """The leading wheelset's amplitude (m), as :class:`PeriodicOrbit`'s."""
+        return float(self.wheelset_amplitudes[0])
+
+    def orbit(self) -> PeriodicOrbit:
+        """The orbit with its Floquet multipliers and stability."""
+        return self.shoot.orbit(self.u, self.residual, self.iterations)
 
 
 def phase_origin(t: np.ndarray, y: np.ndarray) -> int:
