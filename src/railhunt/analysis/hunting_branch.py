@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from railhunt.analysis.linear import linear_critical_speed
+from railhunt.analysis.linear import LinearCriticalSpeed, linear_critical_speed
 from railhunt.analysis.modes import _is_wheelset_mode, eigenvalues
 from railhunt.model import Model
 from railhunt.units import kmh_to_ms
@@ -46,15 +46,22 @@ _BRANCHES: weakref.WeakKeyDictionary[Model, _Branch | None] = weakref.WeakKeyDic
 def _branch(model: Model) -> _Branch | None:
     """The model's branch, seeded with the linear critical speed's crossing pair."""
     if model not in _BRANCHES:
-        lin = linear_critical_speed(model.vehicle, creep_law=model.creep_law,
-                                    contact=model.contact)  # fmt: skip
-        lam = complex(lin.eigenvalue)
-        if not math.isfinite(lin.speed_kmh) or abs(lam.imag) < 1e-6:
-            _BRANCHES[model] = None
-        else:
-            lam = lam if lam.imag > 0 else lam.conjugate()
-            _BRANCHES[model] = _Branch(float(lin.speed_kmh), [(float(lin.speed_kmh), lam)])
+        seed_crossing(model, linear_critical_speed(model.vehicle, creep_law=model.creep_law,
+                                                   contact=model.contact))  # fmt: skip
     return _BRANCHES[model]
+
+
+def seed_crossing(model: Model, lin: LinearCriticalSpeed) -> None:
+    """Start ``model``'s continuation from ``lin``, its linear critical speed
+    (:func:`~railhunt.analysis.linear.linear_critical_speed` of ``model.vehicle`` with
+    ``model``'s creep law and contact geometry), when the caller has it already: it is
+    not computed again."""
+    lam = complex(lin.eigenvalue)
+    if not math.isfinite(lin.speed_kmh) or abs(lam.imag) < 1e-6:
+        _BRANCHES[model] = None
+    else:
+        lam = lam if lam.imag > 0 else lam.conjugate()
+        _BRANCHES[model] = _Branch(float(lin.speed_kmh), [(float(lin.speed_kmh), lam)])
 
 
 def _nearest(w: np.ndarray, lam: complex) -> tuple[int, bool]:

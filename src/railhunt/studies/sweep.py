@@ -101,7 +101,9 @@ def evaluate_point(
     """
     from railhunt.analysis.critical import critical_speed
     from railhunt.analysis.frequency import hunting_frequency
+    from railhunt.analysis.hunting_branch import seed_crossing
     from railhunt.analysis.linear import linear_critical_speed
+    from railhunt.model import Model
 
     row: dict[str, Any] = {"point": point.index, "line": point.line, **point.values}
     for name in outputs:
@@ -122,18 +124,24 @@ def evaluate_point(
             row["critical_speed_kmh"] = float(res.speed_kmh)
             if not res.bracketed:
                 status, message = STATUS_NO_CRITICAL_SPEED, critical_speed_message(res)
+        lin = None
         if "linear_critical_speed" in outputs:
             lin = linear_critical_speed(v, creep_law=creep_law)
             row["linear_critical_speed_kmh"] = float(lin.speed_kmh)
             row["linear_frequency_hz"] = float(lin.frequency_hz)
         if "hunting_frequency" in outputs:
+            model = Model(v, creep_law=creep_law)
+            if lin is not None and (creep_law is not None
+                                    or len(set(v.assembly.creep_laws)) == 1):  # fmt: skip
+                # The hunting mode is followed from this Hopf point: not found twice.
+                seed_crossing(model, lin)
             if frequency_amplitude is None:
                 defect = SingleDefect() if excitation is None else excitation
-                hf = hunting_frequency(v, frequency_speed_kmh, creep_law=creep_law,
+                hf = hunting_frequency(v, frequency_speed_kmh, model=model,
                                        excitation=defect)  # fmt: skip
             else:
                 hf = hunting_frequency(v, frequency_speed_kmh, frequency_amplitude,
-                                       creep_law=creep_law)  # fmt: skip
+                                       model=model)  # fmt: skip
             row["hunting_frequency_hz"] = float(hf.frequency_hz)
             row["frequency_source"] = hf.source
         for name in outputs:
