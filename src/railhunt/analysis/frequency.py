@@ -365,7 +365,7 @@ def _refine_orbit(model: Model, speed_kmh: float, t: np.ndarray, x: np.ndarray, 
     for k in _maxima(x[:, model.layout.y_w1], 3):
         start = _extremum_state(model, speed_kmh, t, x, k, dt)
         try:
-            shot = shoot_orbit(model, speed_kmh, start, 1.0 / f_fft, dt=dt)
+            shot = shoot_orbit(model, speed_kmh, start, 1.0 / f_fft, dt=dt, krylov=True)
         except RuntimeError as exc:
             reasons.append(str(exc))
             continue

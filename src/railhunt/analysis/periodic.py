@@ -31,6 +31,7 @@ from functools import cached_property
 import numpy as np
 
 from railhunt.analysis.newton import newton
+from railhunt.analysis.newton_krylov import newton_krylov
 from railhunt.kernel.flow import flow
 from railhunt.kernel.layout import LAYOUT, RATE0, Y_W1, StateLayout
 from railhunt.model import Model
@@ -399,9 +400,14 @@ def shoot_orbit(
     dt: float | None = None,
     tol: float = 1e-8,
     creep_law: str | None = None,
+    krylov: bool = False,
 ) -> ShotOrbit:
     """:func:`periodic_orbit` (same parameters and errors) up to its Floquet multipliers:
-    the converged shooting solution, whose :meth:`ShotOrbit.orbit` computes them."""
+    the converged shooting solution, whose :meth:`ShotOrbit.orbit` computes them.
+
+    ``krylov`` refreshes Newton's Jacobian by Krylov solves
+    (:func:`railhunt.analysis.newton_krylov.newton_krylov`): the same orbit to ``tol``
+    for far fewer flows from a start that is not yet on the cycle."""
     model = vehicle_or_model if isinstance(vehicle_or_model, Model) else Model(
         vehicle_or_model, creep_law=creep_law)
     speed = kmh_to_ms(speed_kmh)
@@ -420,7 +426,8 @@ def shoot_orbit(
     def jac_fun(w: np.ndarray, r: np.ndarray) -> np.ndarray:
         return shoot.jacobian(np.append(w, vs), r, speed=False)[:, :-1]
 
-    w, norm, it, ok, _ = newton(fun, jac_fun, u0, tol=tol, max_iter=20)
+    solve = newton_krylov if krylov else newton
+    w, norm, it, ok, _ = solve(fun, jac_fun, u0, tol=tol, max_iter=20)
     if not ok:
         raise RuntimeError(
             f"shooting did not converge at {speed_kmh:.1f} km/h "
