@@ -362,10 +362,12 @@ def _refine_orbit(model: Model, speed_kmh: float, t: np.ndarray, x: np.ndarray, 
         Why no orbit was accepted ("" when one was).
     """
     reasons: list[str] = []
+    jacobians: list[np.ndarray] = []  # each shot's Newton starts from the last one's
     for k in _maxima(x[:, model.layout.y_w1], 3):
         start = _extremum_state(model, speed_kmh, t, x, k, dt)
         try:
-            shot = shoot_orbit(model, speed_kmh, start, 1.0 / f_fft, dt=dt, krylov=True)
+            shot = shoot_orbit(model, speed_kmh, start, 1.0 / f_fft, dt=dt, krylov=True,
+                               jacobians=jacobians)  # fmt: skip
         except RuntimeError as exc:
             reasons.append(str(exc))
             continue

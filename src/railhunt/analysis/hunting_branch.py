@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from railhunt.analysis.linear import LinearCriticalSpeed, linear_critical_speed
-from railhunt.analysis.modes import _is_wheelset_mode, eigenvalues
+from railhunt.analysis.modes import _is_wheelset_mode
 from railhunt.model import Model
 from railhunt.units import kmh_to_ms
 
@@ -89,7 +89,7 @@ def crossing_mode_index(model: Model, speed_kmh: float, w: np.ndarray) -> int | 
     step = MAX_STEP_KMH
     while s != speed_kmh:
         nxt = s + math.copysign(min(step, abs(speed_kmh - s)), speed_kmh - s)
-        w_next = eigenvalues(model, kmh_to_ms(nxt))[0]
+        w_next = np.linalg.eigvals(model.jacobian(kmh_to_ms(nxt)))  # no vectors needed
         k, clear = _nearest(w_next, lam)
         if not clear and step > MIN_STEP_KMH:
             step /= 2

@@ -93,20 +93,23 @@ def newton_krylov(
     halvings: int = 6,
     krylov_rtol: float = 1e-3,
     krylov_dim: int = 10,
+    previous: np.ndarray | None = None,
 ) -> tuple[np.ndarray, float, int, bool, np.ndarray | None]:
     """Newton's method with step halving and Krylov Jacobian refreshes (module docstring).
 
     Same parameters and returns as :func:`railhunt.analysis.newton.newton` (without
-    ``jac``), plus ``krylov_rtol`` (relative residual of each refreshed Newton system)
-    and ``krylov_dim`` (directional differences per refresh before a full ``jac_fun``).
+    ``jac``), plus ``krylov_rtol`` (relative residual of each refreshed Newton system),
+    ``krylov_dim`` (directional differences per refresh before a full ``jac_fun``) and
+    ``previous``: a Jacobian of the same system near ``u0`` (an earlier solve's last one)
+    that preconditions the first step too. The last Jacobian returned is the latest one
+    known, also when Newton fails.
     """
     u = u0.copy()
     r = fun(u)
     norm = float(np.max(np.abs(r)))
     if not math.isfinite(norm):
-        return u, norm, 0, False, None
+        return u, norm, 0, False, previous
     jac: np.ndarray | None = None
-    previous: np.ndarray | None = None  # the last Jacobian, preconditioner of a refresh
     for it in range(1, max_iter + 1):
         if norm < tol:
             return u, norm, it - 1, True, jac
@@ -140,11 +143,12 @@ def newton_krylov(
             return u, norm, it, False, jac
         ratio = nn / norm
         step = lam * du
+        # The Jacobian with Broyden's update along the step: the next refresh's start.
         previous = jac + np.outer(rn - r - jac @ step, step) / float(step @ step)
         u, r, norm = un, rn, nn
         if ratio > 0.25:
             jac = None  # slow (chord) convergence: refresh the Jacobian
-    return u, norm, max_iter, norm < tol, jac
+    return u, norm, max_iter, norm < tol, jac if jac is not None else previous
 
 
 def _krylov_step(fun, u: np.ndarray, r: np.ndarray, previous: np.ndarray, rtol: float,

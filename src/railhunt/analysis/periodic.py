@@ -401,13 +401,17 @@ def shoot_orbit(
     tol: float = 1e-8,
     creep_law: str | None = None,
     krylov: bool = False,
+    jacobians: list[np.ndarray] | None = None,
 ) -> ShotOrbit:
     """:func:`periodic_orbit` (same parameters and errors) up to its Floquet multipliers:
     the converged shooting solution, whose :meth:`ShotOrbit.orbit` computes them.
 
     ``krylov`` refreshes Newton's Jacobian by Krylov solves
     (:func:`railhunt.analysis.newton_krylov.newton_krylov`): the same orbit to ``tol``
-    for far fewer flows from a start that is not yet on the cycle."""
+    for far fewer flows from a start that is not yet on the cycle. ``jacobians`` (with
+    ``krylov``) carries Newton's last Jacobian from one shot to the next of the same
+    problem from nearby starts: its last entry preconditions the first step, and this
+    shot's last Jacobian is appended, whether it converges or not."""
     model = vehicle_or_model if isinstance(vehicle_or_model, Model) else Model(
         vehicle_or_model, creep_law=creep_law)
     speed = kmh_to_ms(speed_kmh)
@@ -426,8 +430,14 @@ def shoot_orbit(
     def jac_fun(w: np.ndarray, r: np.ndarray) -> np.ndarray:
         return shoot.jacobian(np.append(w, vs), r, speed=False)[:, :-1]
 
-    solve = newton_krylov if krylov else newton
-    w, norm, it, ok, _ = solve(fun, jac_fun, u0, tol=tol, max_iter=20)
+    if krylov:
+        previous = jacobians[-1] if jacobians else None
+        w, norm, it, ok, last = newton_krylov(fun, jac_fun, u0, tol=tol, max_iter=20,
+                                              previous=previous)  # fmt: skip
+        if jacobians is not None and last is not None:
+            jacobians.append(last)
+    else:
+        w, norm, it, ok, _ = newton(fun, jac_fun, u0, tol=tol, max_iter=20)
     if not ok:
         raise RuntimeError(
             f"shooting did not converge at {speed_kmh:.1f} km/h "
