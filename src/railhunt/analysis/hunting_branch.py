@@ -107,15 +107,25 @@ def hunting_mode_at(model: Model, speed_kmh: float, w: np.ndarray, vecs: np.ndar
     (:func:`railhunt.analysis.modes.hunting_mode_index`) and the continuation of the
     crossing pair (:func:`crossing_mode_index`)."""
     layout, a = model.layout, model.half_gauge
-    cont = crossing_mode_index(model, speed_kmh, w)
-    best = -1
-    for k in range(w.size):
-        if w[k].imag <= 1e-6:
-            continue
-        if (k == cont or _is_wheelset_mode(vecs[:layout.n_dof, k], a, layout)) and (
-                best < 0 or w[k].real > w[best].real):  # fmt: skip
-            best = k
+    osc = np.flatnonzero(w.imag > 1e-6)
+    wheelset = {int(k) for k in osc if _is_wheelset_mode(vecs[:layout.n_dof, k], a, layout)}
+    best = _least_damped(w, osc, wheelset)
+    # The continuation can only change the pick when it ends on a mode that is not a
+    # wheelset mode and is at least as lightly damped as the best wheelset mode: where
+    # no such mode exists (the paper's vehicle), it is not run at all.
+    if best < 0 or any(k not in wheelset and w[k].real >= w[best].real for k in osc):
+        cont = crossing_mode_index(model, speed_kmh, w)
+        best = _least_damped(w, osc, wheelset | ({cont} if cont is not None else set()))
     if best >= 0:
         return best
-    osc = np.flatnonzero(w.imag > 1e-6)
     return int(osc[np.argmax(w[osc].real)]) if osc.size else 0
+
+
+def _least_damped(w: np.ndarray, osc: np.ndarray, candidates: set[int]) -> int:
+    """Index of the eigenvalue of largest real part among ``candidates`` (first in index
+    order on a tie; they must be in ``osc``, the oscillatory ones), or -1 for none."""
+    best = -1
+    for k in osc:
+        if k in candidates and (best < 0 or w[k].real > w[best].real):
+            best = int(k)
+    return best

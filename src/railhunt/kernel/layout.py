@@ -23,6 +23,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from enum import IntEnum
+from functools import cached_property
 from typing import NamedTuple
 
 import numpy as np
@@ -78,9 +79,10 @@ class StateLayout:
     bodies: tuple[Body, ...]
     dampers: tuple[str, ...]
 
-    @property
+    @cached_property
     def dof_names(self) -> tuple[str, ...]:
-        """Names of the generalised coordinates, e.g. ``("y_c", "psi_c", ...)``."""
+        """Names of the generalised coordinates, e.g. ``("y_c", "psi_c", ...)`` (computed
+        once: every index lookup of the layout reads them)."""
         return tuple(f"{c}_{b.tag}" for b in self.bodies for c in b.coordinates)
 
     @property
