@@ -295,7 +295,8 @@ def derived(t: np.ndarray, x: np.ndarray, v: float, s: SystemArrays,
     guiding force ``Y`` of each left wheel, then of each right wheel (the force of the
     wheel on its rail, N, positive outward from the track centre); the wheel loads ``Q``
     of the left wheels, then of the right wheels (N); then ``d(rate)/dt`` of each
-    coordinate in ``acc_index`` (m/s^2 or rad/s^2).
+    coordinate in ``acc_index`` (m/s^2 or rad/s^2). With ``acc_index`` empty the whole
+    right-hand side is not evaluated (the wheel/rail forces alone: half the cost).
     """
     nq = s.linear.shape[0]
     nw = s.wheelsets.shape[0]
@@ -304,7 +305,8 @@ def derived(t: np.ndarray, x: np.ndarray, v: float, s: SystemArrays,
     out = np.empty(x.shape[1])
     for i in range(n):
         xi = x[i]
-        rhs(t[i], xi, v, s, out)
+        if acc_index.shape[0] > 0:
+            rhs(t[i], xi, v, s, out)
         for j in range(nw):
             fy, _, f_l, f_r, q_l, q_r = wheelset_track_forces(j, t[i], xi, v, s)
             res[i, j] = -fy
