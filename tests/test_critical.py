@@ -222,7 +222,7 @@ def test_early_decay_changes_no_verdict_and_shortens_only_stable_trials(monkeypa
     """The paper's search with and without the early checks: the same critical speed and
     the same verdict at every trial; hunting trials identical (the regular checks keep
     their times and the pieces give the chunk's steps), stable ones shorter."""
-    import railhunt.analysis.critical as critical
+    import railhunt.analysis.judgement as critical
 
     early = railhunt.critical_speed(PAPER)
     monkeypatch.setattr(critical, "EARLY_CHECK", 1e9)  # one piece per chunk: regular only

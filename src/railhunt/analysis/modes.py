@@ -79,7 +79,9 @@ def least_damped_rate(model: Model, speed: float, state: np.ndarray | None = Non
     """Real parts (1/s) of the least damped oscillatory eigenvalue (NaN if none oscillates)
     and of the least damped eigenvalue of all, of the model linearised at ``state``
     (default the centred state) at ``speed`` (m/s)."""
-    jac = model.jacobian(speed) if state is None else model.jacobian(speed, state, route=route)
-    w = np.linalg.eigvals(jac)
+    if state is None:
+        w = model.centred_eigenvalues(speed)
+    else:
+        w = np.linalg.eigvals(model.jacobian(speed, state, route=route))
     osc = w[w.imag > 1e-6]
     return (float(np.max(osc.real)) if osc.size else math.nan), float(np.max(w.real))

@@ -177,13 +177,16 @@ def rhs(t: float, x: np.ndarray, v: float, s: SystemArrays, out: np.ndarray) -> 
     curved = route.shape[0] > 0
 
     # Suspension: rates, linear springs and dampers with gravity's roll terms.
+    # Column by column: each acceleration sums the same products in the same order as a
+    # row-by-row dot product (so the same bits), but the inner loop over the rows runs
+    # down a column of the Fortran-ordered matrix (Model.system) and vectorises.
     for i in range(nq):
         out[i] = x[nq + i]
-    for i in range(nq):
-        acc = 0.0
-        for k in range(2 * nq):
-            acc += lin[i, k] * x[k]
-        out[nq + i] = acc
+        out[nq + i] = 0.0
+    for k in range(2 * nq):
+        xk = x[k]
+        for i in range(nq):
+            out[nq + i] += lin[i, k] * xk
     # Yaw dampers (Maxwell elements): the force is a state.
     for d in range(dpar.shape[0]):
         f = x[fz + d]
