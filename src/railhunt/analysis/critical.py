@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
+from typing import Any
 
 import numpy as np
 
@@ -59,9 +60,56 @@ from railhunt.verdicts import (  # noqa: F401
 )
 
 
+class _Deferred:
+    """A data field whose value is a list, or a zero-argument callable that gives the list
+    when the field is first read (then kept): what is costly and seldom read is computed
+    only for those who read it."""
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.slot = f"_{name}"
+
+    def __get__(self, obj: object, objtype: type | None = None) -> Any:
+        if obj is None:
+            return ()  # the dataclass's default: no limits
+        value = obj.__dict__[self.slot]
+        if callable(value):
+            value = obj.__dict__[self.slot] = list(value())
+        return value
+
+    def __set__(self, obj: object, value: Any) -> None:
+        obj.__dict__[self.slot] = value if callable(value) else list(value)
+
+
+@dataclass(frozen=True)
+class _Replay:
+    """A straight-track trial, to run again: :func:`run_until_verdict` is deterministic (the
+    same record, bit for bit), so its validity limits (:func:`railhunt.validity.
+    record_limits`) are computed from the record run again when first read, and a search
+    whose limits nobody reads (a study's point) neither computes nor keeps them."""
+
+    model: Model
+    speed_kmh: float
+    excitation: object
+    judgement: Judgement
+    method: str
+    dt: float
+    output_dt: float
+
+    def __call__(self) -> list:
+        _, t, x, *_ = run_until_verdict(self.model, self.speed_kmh, self.judgement,
+                                        self.excitation, method=self.method, dt=self.dt,
+                                        output_dt=self.output_dt)  # fmt: skip
+        return record_limits(self.model, kmh_to_ms(self.speed_kmh), t, x, self.excitation)
+
+
 @dataclass
 class Trial:
-    """One simulated speed and its verdict."""
+    """One simulated speed and its verdict.
+
+    ``limits`` are the validity limits the run reached on straight track
+    (:class:`railhunt.validity.Limit`); a search computes them when they are first read,
+    from the trial run again (the same record).
+    """
 
     speed_kmh: float
     verdict: str
@@ -71,7 +119,7 @@ class Trial:
     decided: bool  # False when max_duration ran out and the trend decided
     status: str  # integrator status ("ok", "derailed", ...)
     reason: str = ""  # why an undecided, derailed or blow-up trial is so, in words
-    limits: list = field(default_factory=list)  # validity limits the run reached (straight)
+    limits: list = _Deferred()  # validity limits the run reached (straight track)
 
 
 @dataclass(repr=False)
@@ -184,9 +232,9 @@ def run_trial(
     )  # fmt: skip
     status = STATUS_NAMES[code]
     # The dynamic limits reached on straight track (a curve's search stops at its steady
-    # state's); they inform and change no verdict.
-    limits = (record_limits(model, kmh_to_ms(speed_kmh), t, x, excitation) if route is None
-              else [])  # fmt: skip
+    # state's); they inform and change no verdict, and are computed when first read.
+    limits = (_Replay(model, speed_kmh, excitation, judgement, method, dt, output_dt)
+              if route is None else [])  # fmt: skip
     return Trial(speed_kmh, verdict, amp, rate, float(t[-1]), decided, status,
                  trial_reason(verdict, amp, rate, decided, float(t[-1]), status), limits)
 

@@ -409,6 +409,8 @@ def run_until_verdict(
             t0, x_start = float(t[-1]), x[-1].copy()
             if code != OK or k == len(pieces) - 1:
                 break
+            if np.max(np.abs(ys[-1])) >= EARLY_DECAY:
+                continue  # still too large for an early verdict (it reads the last second)
             n = _tail_pieces(ts, 2.0)  # the early verdict reads the last 2 s
             early = early_decay(np.concatenate(ts[-n:]), np.concatenate(ys[-n:]), t_exc,
                                 size, equilibrium_rate)  # fmt: skip
