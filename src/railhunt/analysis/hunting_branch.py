@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from railhunt.analysis.linear import linear_critical_speed
-from railhunt.analysis.modes import _is_wheelset_mode, eigenvalues
+from railhunt.analysis.modes import eigenvalues, is_wheelset_mode
 from railhunt.model import Model
 from railhunt.units import kmh_to_ms
 
@@ -105,7 +105,7 @@ def hunting_mode_at(model: Model, speed_kmh: float, w: np.ndarray, vecs: np.ndar
     for k in range(w.size):
         if w[k].imag <= 1e-6:
             continue
-        if (k == cont or _is_wheelset_mode(vecs[:layout.n_dof, k], a, layout)) and (
+        if (k == cont or is_wheelset_mode(vecs[:layout.n_dof, k], a, layout)) and (
                 best < 0 or w[k].real > w[best].real):  # fmt: skip
             best = k
     if best >= 0:

@@ -43,12 +43,12 @@ def hunting_mode_index(w: np.ndarray, vecs: np.ndarray, a: float,
         if best_any < 0 or w[k].real > w[best_any].real:
             best_any = k
         better = best < 0 or w[k].real > w[best].real
-        if better and _is_wheelset_mode(vecs[:layout.n_dof, k], a, layout):
+        if better and is_wheelset_mode(vecs[:layout.n_dof, k], a, layout):
             best = k
     return best if best >= 0 else best_any
 
 
-def _is_wheelset_mode(q: np.ndarray, a: float, layout: StateLayout = LAYOUT) -> bool:
+def is_wheelset_mode(q: np.ndarray, a: float, layout: StateLayout = LAYOUT) -> bool:
     """True when the largest lateral amplitude of mode shape ``q`` (coordinates) is a wheelset's."""
     lateral = np.abs(q[layout.body_y])
     wheel = np.concatenate([np.abs(q[layout.wheelset_y]), a * np.abs(q[layout.wheelset_psi])])
