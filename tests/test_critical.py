@@ -187,3 +187,54 @@ def test_critical_speed_rejects_bad_arguments():
         railhunt.simulate(PAPER, 300, duration=0.1, method="euler")
     with pytest.raises(ValueError, match="creep_law"):
         railhunt.simulate(PAPER, 300, duration=0.1, creep_law="magic")
+
+
+# ------------------------------------------------------------ the early verdict of decay
+
+
+def _sine_record(envelope, t_end=8.0, f=4.8):
+    t = np.arange(0.0, t_end, 2e-3)
+    return t, envelope(t) * np.sin(2 * np.pi * f * t)
+
+
+def test_early_decay_only_for_a_small_fast_falling_motion_about_a_stable_equilibrium():
+    """Fires on a small motion falling by half within a second (linearly stable speed);
+    never on one that lingers at the small unstable cycle's size (1.1 mm, falling 1 %/s),
+    on a small motion that falls slowly, before 2 s after the excitation, or when the
+    equilibrium is linearly unstable."""
+    from railhunt.analysis.critical import EARLY_DECAY, early_decay
+
+    t, fast = _sine_record(lambda t: 2e-4 * np.exp(-1.2 * t))
+    got = early_decay(t, fast, 0.5, 8e-3, -0.24)
+    assert got is not None and got[0] < EARLY_DECAY
+    assert got[1] == pytest.approx(-1.2, abs=0.15)  # the envelope's log rate (1/s)
+    assert early_decay(t, fast, 0.5, 8e-3, +0.01) is None  # the equilibrium is unstable
+    assert early_decay(t, fast, 0.5, 8e-3, None) is None
+    assert early_decay(t, fast, 7.0, 8e-3, -0.24) is None  # not 2 s after the excitation
+    assert early_decay(t, fast, 0.5, 6e-8, -0.24) is None  # not below half the excitation
+    _, linger = _sine_record(lambda t: 1.1e-3 * np.exp(-0.01 * t))
+    assert early_decay(t, linger, 0.5, 8e-3, -0.24) is None
+    _, slow = _sine_record(lambda t: 2e-4 * np.exp(-0.3 * t))
+    assert early_decay(t, slow, 0.5, 8e-3, -0.24) is None
+
+
+def test_early_decay_changes_no_verdict_and_shortens_only_stable_trials(monkeypatch):
+    """The paper's search with and without the early checks: the same critical speed and
+    the same verdict at every trial; hunting trials identical (the regular checks keep
+    their times and the pieces give the chunk's steps), stable ones shorter."""
+    import railhunt.analysis.judgement as critical
+
+    early = railhunt.critical_speed(PAPER)
+    monkeypatch.setattr(critical, "EARLY_CHECK", 1e9)  # one piece per chunk: regular only
+    monkeypatch.setattr(critical, "early_decay", lambda *args: None)
+    regular = railhunt.critical_speed(PAPER)
+    assert early.speed_kmh == regular.speed_kmh == 301.0
+    assert [t.speed_kmh for t in early.trials] == [t.speed_kmh for t in regular.trials]
+    for a, b in zip(early.trials, regular.trials, strict=True):
+        assert a.verdict == b.verdict
+        if a.verdict == STABLE:
+            assert a.duration < b.duration - 1.0
+            assert a.amplitude < critical.EARLY_DECAY
+        else:
+            assert a.duration == pytest.approx(b.duration, abs=1e-9)
+            assert a.amplitude == b.amplitude

@@ -83,7 +83,7 @@ def channel_names(layout: StateLayout = LAYOUT) -> tuple[str, ...]:
 
 def derived_channels(
     t: np.ndarray, x: np.ndarray, speed: float, system: SystemArrays,
-    layout: StateLayout = LAYOUT,
+    layout: StateLayout = LAYOUT, accelerations: bool = True,
 ) -> dict[str, np.ndarray]:  # fmt: skip
     """Guiding forces, wheel loads and bogie accelerations along a run.
 
@@ -99,6 +99,10 @@ def derived_channels(
         The model's arrays with the run's track input (:meth:`railhunt.model.Model.system`).
     layout : StateLayout
         The model's state layout (``model.layout``; default: the paper's vehicle).
+    accelerations : bool
+        Include the bogie frames' accelerations (``ddy_``, ``ddpsi_``); without them the
+        right-hand side is not evaluated, only the wheel/rail forces (about half the cost:
+        what the validity limits of a trial run read).
 
     Returns
     -------
@@ -108,6 +112,9 @@ def derived_channels(
     tags, kernel, names, acc = _plan(layout)
     t = np.ascontiguousarray(t, dtype=np.float64)
     x = np.ascontiguousarray(x, dtype=np.float64)
+    if not accelerations:
+        kernel, acc = kernel[:5 * len(tags)], acc[:0]  # the wheel/rail columns only
+        names = tuple(n for n in names if not n.startswith("dd"))
     res = derived(t, x, speed, system, acc)
     cols = {name: res[:, k].copy() for k, name in enumerate(kernel)}
     for w in tags:

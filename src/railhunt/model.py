@@ -117,8 +117,9 @@ class Model:
         inv_m = 1.0 / self.mass
         bd, rows = asm.damper_rows, asm.stop_rows
         trk, trs = _track.encode(None)
+        self._eigen_cache: dict[float, np.ndarray] = {}  # centred_eigenvalues, by speed
         self._system = SystemArrays(
-            linear=np.ascontiguousarray(-inv_m[:, None] * np.hstack([self.K, self.C])),
+            linear=np.asfortranarray(-inv_m[:, None] * np.hstack([self.K, self.C])),
             damper_rows=np.ascontiguousarray(bd),
             damper_acc=np.ascontiguousarray(-inv_m[:, None] * bd.T),
             damper=np.ascontiguousarray(asm.damper),
@@ -248,6 +249,19 @@ class Model:
         n = self.layout.n_state
         x0 = np.zeros(n) if x is None else np.ascontiguousarray(x, dtype=np.float64)
         return jacobian(x0, *self.args(speed, route=route), t)
+
+    def centred_eigenvalues(self, speed: float) -> np.ndarray:
+        """Eigenvalues (1/s) of :meth:`jacobian` at the centred state on straight track at
+        ``speed`` (m/s), kept for the last few speeds: a trial's step
+        (:func:`railhunt.simulation.auto_step`) and its linear decay rates
+        (:func:`railhunt.analysis.modes.least_damped_rate`) read the same ones."""
+        key = float(speed)
+        cache = self._eigen_cache
+        if key not in cache:
+            if len(cache) >= 8:
+                cache.pop(next(iter(cache)))
+            cache[key] = np.linalg.eigvals(self.jacobian(key))
+        return cache[key].copy()
 
     def damper_velocities(self, damper_forces: np.ndarray) -> np.ndarray:
         """Velocities of the viscous parts of the yaw dampers (m/s) for given forces (N).

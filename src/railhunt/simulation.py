@@ -241,7 +241,7 @@ def auto_step(model: Model, speed: float, safety: float = 0.6, dt_max: float = 1
         (or ``C_d2``) against ``K_d`` would make every run take hours. The message names
         the rate, the step it forces and the smallest damping that avoids it.
     """
-    rate = float(np.max(np.abs(np.linalg.eigvals(model.jacobian(speed)))))
+    rate = float(np.max(np.abs(model.centred_eigenvalues(speed))))
     d = model.dpar
     k_d = d[:, DamperParam.K_D]
     rate_1 = float(np.max(k_d / d[:, DamperParam.C_D1], initial=0.0))
@@ -257,7 +257,7 @@ def step_cause(model: Model, speed: float, dt_max: float = 1e-3) -> str:
     """What sets the automatic step of ``model`` at ``speed`` (m/s), in words naming the
     parameters: a yaw damper stage's relaxation ``K_d / C_d1`` (or ``C_d2``), the model's
     fastest mode, or the step's cap of ``dt_max`` s."""
-    rate = float(np.max(np.abs(np.linalg.eigvals(model.jacobian(speed)))))
+    rate = float(np.max(np.abs(model.centred_eigenvalues(speed))))
     d = model.dpar
     k_d = float(np.max(d[:, DamperParam.K_D]))
     c_1 = float(np.min(d[:, DamperParam.C_D1]))

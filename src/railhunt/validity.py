@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Any
 
 import numpy as np
@@ -110,7 +111,14 @@ def flange_clearance(model: Any) -> float:
     angle: the first displacement, scanning 0 to 25 mm in 0.1 mm, where its contact angle
     is within 1 % of its largest value (both directions; the smaller); ``inf`` when the
     contact angle does not grow (conical wheels: no flange in the geometry)."""
-    wr = model.wheel_rail_vector()
+    return _flange_clearance(model.wheel_rail_vector().tobytes())
+
+
+@lru_cache(maxsize=256)
+def _flange_clearance(wr_bytes: bytes) -> float:
+    """:func:`flange_clearance` of a wheel/rail vector (its raw bytes: the same wheels and
+    rails give the same clearance, computed once per process for every trial of a search)."""
+    wr = np.frombuffer(wr_bytes, dtype=np.float64)
     ys = np.arange(0.0, 0.0251, 1e-4)
     out = math.inf
     for sign, side in ((1.0, 2), (-1.0, 3)):
@@ -306,7 +314,8 @@ def record_limits(model: Any, speed: float, t: np.ndarray, x: np.ndarray,
     as :func:`railhunt.simulate` derives them (:func:`run_limits`)."""
     from railhunt.channels import derived_channels
 
-    derived = derived_channels(t, x, *model.args(speed, excitation), model.layout)
+    derived = derived_channels(t, x, *model.args(speed, excitation), model.layout,
+                               accelerations=False)  # fmt: skip
     return run_limits(_Record(t, x, speed, derived), model, excitation)
 
 

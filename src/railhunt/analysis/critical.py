@@ -3,11 +3,10 @@
 Each trial speed is simulated with a single lateral track defect followed by ideal track,
 and judged from the envelope of the leading wheelset's lateral displacement after the
 defect: *stable* (the motion died out) or not (*hunting*, *undecided*, *derailed* or
-*blow-up*; the words are defined in :mod:`railhunt.verdicts`). A run is
-extended chunk by chunk until its envelope is clearly decayed or clearly stationary, so
-that a slowly decaying or slowly growing run is not misjudged
-at the end of a fixed window. The search starts at 300 km/h, steps by 10 km/h until the
-verdict changes, then bisects to 1 km/h; the critical speed is the highest stable speed.
+*blow-up*; the words are defined in :mod:`railhunt.verdicts`), as
+:mod:`railhunt.analysis.judgement` judges a run. The search starts at 300 km/h, steps by
+10 km/h until the verdict changes, then bisects to 1 km/h; the critical speed is the
+highest stable speed.
 """
 
 from __future__ import annotations
@@ -15,80 +14,102 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
+from typing import Any
 
 import numpy as np
 
 from railhunt.analysis.curving import EquilibriumPath
 from railhunt.analysis.curving_limit import capped_at_curving_limit
-from railhunt.analysis.modes import least_damped_rate
+
+# How a run is judged lives in railhunt.analysis.judgement; its names are importable
+# from here as before.
+from railhunt.analysis.judgement import (  # noqa: F401
+    DECAY_SHARE,
+    EARLY_CHECK,
+    EARLY_DECAY,
+    EARLY_FALL,
+    LINEAR_RANGE,
+    Judgement,
+    RunVerdict,
+    early_decay,
+    envelope_peaks,
+    excitation_size,
+    judge,
+    judge_run,
+    run_until_verdict,
+    swing_peaks,
+)
 from railhunt.analysis.search import bracket_and_bisect, check_search
 from railhunt.curve import Curve
-from railhunt.kernel.integrators import OK, STATUS_NAMES
-from railhunt.kernel.layout import LAYOUT, StateLayout
+from railhunt.kernel.integrators import STATUS_NAMES
 from railhunt.model import Model
 from railhunt.results import Columns, ResultDisplay, Row
-from railhunt.simulation import Y_LIMIT, auto_step, excitation_end_time, integrate_model
+from railhunt.simulation import auto_step
 from railhunt.stepsize import check_step
 from railhunt.track import SampledTrack, SingleDefect, check_excitation
 from railhunt.units import kmh_to_ms
 from railhunt.validity import record_limits
 from railhunt.vehicle import Vehicle
-from railhunt.verdicts import (
+from railhunt.verdicts import (  # noqa: F401
     BLOW_UP,
     DERAILED,
     HUNTING,
     STABLE,
     UNDECIDED,
-    ending,
     trial_reason,
 )
 
-#: Near the Hopf point the linear motion itself is nearly stationary: when the least
-#: damped oscillatory eigenvalue's real part is within ``settle_rate`` of zero, an envelope
-#: below this size (m) is not taken for a steady cycle (it must grow or decay first).
-LINEAR_RANGE = 1e-3
 
-#: A run counts as decayed only below this share of its excitation's size (and below
-#: :attr:`Judgement.decay_amplitude`): a verdict is never taken on a motion that is still
-#: as large as what set it off (a 0.01 mm defect is not "decayed" at 0.02 mm).
-DECAY_SHARE = 0.1
+class _Deferred:
+    """A data field whose value is a list, or a zero-argument callable that gives the list
+    when the field is first read (then kept): what is costly and seldom read is computed
+    only for those who read it."""
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.slot = f"_{name}"
+
+    def __get__(self, obj: object, objtype: type | None = None) -> Any:
+        if obj is None:
+            return ()  # the dataclass's default: no limits
+        value = obj.__dict__[self.slot]
+        if callable(value):
+            value = obj.__dict__[self.slot] = list(value())
+        return value
+
+    def __set__(self, obj: object, value: Any) -> None:
+        obj.__dict__[self.slot] = value if callable(value) else list(value)
 
 
 @dataclass(frozen=True)
-class Judgement:
-    """How a run is judged (all thresholds in SI units).
+class _Replay:
+    """A straight-track trial, to run again: :func:`run_until_verdict` is deterministic (the
+    same record, bit for bit), so its validity limits (:func:`railhunt.validity.
+    record_limits`) are computed from the record run again when first read, and a search
+    whose limits nobody reads (a study's point) neither computes nor keeps them."""
 
-    Parameters
-    ----------
-    decay_amplitude : float
-        Envelope below which the motion counts as decayed to equilibrium (m).
-    settle_window : float
-        Length of the window over which a limit cycle must be stationary (s).
-    settle_rate : float
-        Largest |d ln(amplitude)/dt| of a stationary envelope (1/s).
-    chunk : float
-        Simulated time added each time the verdict is still open (s).
-    max_duration : float
-        Longest simulated time after the excitation (s); a run still open then is judged
-        by the sign of its envelope trend and marked undecided.
-    """
+    model: Model
+    speed_kmh: float
+    excitation: object
+    judgement: Judgement
+    method: str
+    dt: float
+    output_dt: float
 
-    decay_amplitude: float = 2e-5
-    settle_window: float = 3.0
-    settle_rate: float = 0.01
-    chunk: float = 3.0
-    max_duration: float = 60.0
-
-    def __post_init__(self) -> None:
-        for name in ("decay_amplitude", "settle_window", "settle_rate", "chunk", "max_duration"):
-            value = getattr(self, name)
-            if not (math.isfinite(value) and value > 0):
-                raise ValueError(f"{name} = {value!r} is invalid: must be finite and > 0")
+    def __call__(self) -> list:
+        _, t, x, *_ = run_until_verdict(self.model, self.speed_kmh, self.judgement,
+                                        self.excitation, method=self.method, dt=self.dt,
+                                        output_dt=self.output_dt)  # fmt: skip
+        return record_limits(self.model, kmh_to_ms(self.speed_kmh), t, x, self.excitation)
 
 
 @dataclass
 class Trial:
-    """One simulated speed and its verdict."""
+    """One simulated speed and its verdict.
+
+    ``limits`` are the validity limits the run reached on straight track
+    (:class:`railhunt.validity.Limit`); a search computes them when they are first read,
+    from the trial run again (the same record).
+    """
 
     speed_kmh: float
     verdict: str
@@ -98,7 +119,7 @@ class Trial:
     decided: bool  # False when max_duration ran out and the trend decided
     status: str  # integrator status ("ok", "derailed", ...)
     reason: str = ""  # why an undecided, derailed or blow-up trial is so, in words
-    limits: list = field(default_factory=list)  # validity limits the run reached (straight)
+    limits: list = _Deferred()  # validity limits the run reached (straight track)
 
 
 @dataclass(repr=False)
@@ -187,290 +208,6 @@ class CriticalSpeedResult(ResultDisplay):
                 "status": ([x.status for x in t], "")}  # fmt: skip
 
 
-def envelope_peaks(t: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Times and values of the local maxima of ``|y|`` (one per half cycle)."""
-    a = np.abs(y)
-    if a.size < 3:
-        return t[:0], a[:0]
-    idx = np.nonzero((a[1:-1] >= a[:-2]) & (a[1:-1] > a[2:]))[0] + 1
-    return t[idx], a[idx]
-
-
-def swing_peaks(t: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Times of the extrema of ``y`` and the half swing into each (half peak-to-peak).
-
-    The envelope of an oscillation that is not symmetric about zero (about a curving
-    equilibrium the excursions toward the flange and away from it differ): at each local
-    extremum, half its distance from the extremum before it.
-    """
-    if y.size < 3:
-        return t[:0], y[:0]
-    d = np.diff(y)
-    idx = np.nonzero(((d[:-1] > 0) & (d[1:] <= 0)) | ((d[:-1] < 0) & (d[1:] >= 0)))[0] + 1
-    if idx.size < 2:
-        return t[:0], y[:0]
-    return t[idx[1:]], 0.5 * np.abs(np.diff(y[idx]))
-
-
-def judge(
-    t: np.ndarray, y: np.ndarray, t_start: float, judgement: Judgement, final: bool = False,
-    two_sided: bool = False, linear_rate: float | None = None,
-    equilibrium_rate: float | None = None,
-) -> tuple[str | None, float, float]:  # fmt: skip
-    """Verdict on a displacement history after ``t_start``.
-
-    ``y`` is the distance from the equilibrium the motion should decay to. With
-    ``two_sided`` the envelope is the half peak-to-peak swing (:func:`swing_peaks`), for
-    oscillations that are not symmetric about that equilibrium (in a curve); otherwise the
-    peaks of ``|y|`` (:func:`envelope_peaks`).
-
-    ``linear_rate`` is the real part of the least damped oscillatory eigenvalue at the
-    run's speed (1/s): when it lies within ``settle_rate`` of zero (near the Hopf point),
-    or of the envelope's own rate, an envelope below :data:`LINEAR_RANGE` is the linear
-    motion, not a steady cycle, and the run must go on. ``equilibrium_rate`` is the
-    largest real part of all the eigenvalues there: when it is negative, a motion still
-    decaying below
-    :data:`LINEAR_RANGE` at ``final`` dies out (it is inside the linear range of a stable
-    equilibrium) and is judged stable.
-
-    Returns
-    -------
-    verdict : {"stable", "hunting", "undecided"} or None
-        None while the run is still open (and ``final`` is False). At ``final`` a run
-        that has not died out is "hunting" when its envelope grows, else "undecided"
-        (verdict words: :mod:`railhunt.verdicts`).
-    amplitude : float
-        Latest envelope value (m).
-    growth_rate : float
-        Slope of ``ln(envelope)`` over the last ``settle_window`` (1/s); NaN if unknown.
-    """
-    mask = t >= t_start
-    tt, yy = t[mask], y[mask]
-    if tt.size < 3:
-        return None, math.nan, math.nan
-    pt, pa = swing_peaks(tt, yy) if two_sided else envelope_peaks(tt, yy)
-    recent = tt >= tt[-1] - min(1.0, judgement.settle_window)
-    amplitude = float(np.max(np.abs(yy[recent])))
-    if amplitude < judgement.decay_amplitude:
-        return STABLE, amplitude, math.nan
-    win = pt >= tt[-1] - judgement.settle_window
-    rate = math.nan
-    if np.count_nonzero(win) >= 4 and tt[-1] - t_start >= judgement.settle_window:
-        rate = float(np.polyfit(pt[win], np.log(pa[win]), 1)[0])
-        spread = (pa[win].max() - pa[win].min()) / pa[win].mean()
-        # Inside the linear range an envelope that changes at the linear motion's own rate
-        # (or, near the Hopf point, at almost none) is that motion, not a steady cycle.
-        near_hopf = (linear_rate is not None and math.isfinite(linear_rate)
-                     and amplitude < LINEAR_RANGE
-                     and (abs(linear_rate) < judgement.settle_rate
-                          or abs(rate - linear_rate) < judgement.settle_rate))  # fmt: skip
-        if abs(rate) < judgement.settle_rate and spread < 0.05 and not near_hopf:
-            return HUNTING, float(pa[win][-1]), rate
-    if final:
-        if math.isfinite(rate) and rate > 0:
-            return HUNTING, amplitude, rate
-        linear_decay = (equilibrium_rate is not None and equilibrium_rate < 0
-                        and amplitude < LINEAR_RANGE)  # fmt: skip
-        if not math.isfinite(rate):  # no oscillation to fit: the trend of max |y| instead
-            rate = _drift_rate(tt, yy, judgement.settle_window)
-        if math.isfinite(rate) and rate < 0 and linear_decay:
-            return STABLE, amplitude, rate
-        return UNDECIDED, amplitude, rate
-    return None, amplitude, rate
-
-
-def _drift_rate(t: np.ndarray, y: np.ndarray, window: float) -> float:
-    """Log slope (1/s) of ``max |y|`` between the last second and the second ``window``
-    earlier, for a motion that does not oscillate; NaN when the record is too short."""
-    now = t >= t[-1] - 1.0
-    before = (t >= t[-1] - window - 1.0) & (t < t[-1] - window)
-    if not before.any():
-        return math.nan
-    a_now, a_before = float(np.max(np.abs(y[now]))), float(np.max(np.abs(y[before])))
-    if a_now <= 0 or a_before <= 0:
-        return math.nan
-    return math.log(a_now / a_before) / window
-
-
-@dataclass(frozen=True)
-class RunVerdict:
-    """The stability verdict on one finished run (:func:`judge_run`), apart from the
-    solver's status, which only says how the integration ended.
-
-    Attributes
-    ----------
-    verdict : {"decays", "hunting", "undecided"}
-        ``"decays"``: the motion dies out; ``"hunting"``: it settles on a limit cycle or
-        keeps growing; ``"derailed"``: it left the track; ``"blow-up"``: the integration
-        blew up (numerics); ``"undecided"``: the run cannot tell.
-    amplitude : float
-        Latest envelope of the leading wheelset's lateral displacement (m).
-    growth_rate : float
-        Slope of the envelope's logarithm over the last window (1/s); NaN if unknown.
-    text : str
-        The verdict in words, e.g. ``"hunting: limit cycle of 9.63 mm"``.
-    """
-
-    verdict: str
-    amplitude: float
-    growth_rate: float
-    text: str
-
-    @property
-    def short(self) -> str:
-        """The verdict with the amplitude when hunting, e.g. ``"hunting, 9.63 mm"``."""
-        if self.verdict == "hunting" and math.isfinite(self.amplitude):
-            return f"hunting, {self.amplitude * 1e3:.3g} mm"
-        return self.verdict
-
-
-def judge_run(result: object, judgement: Judgement | None = None,
-              two_sided: bool = False) -> RunVerdict:  # fmt: skip
-    """Judge a finished run of :func:`railhunt.simulate` by its leading wheelset, after the
-    last wheelset has left the excitation, as the critical-speed search judges a trial.
-
-    ``two_sided``: judge the swing about the run's last mean position (a run in a curve,
-    whose equilibrium is off the track centre) instead of the distance from the centre.
-    """
-    judgement = judgement or Judgement()
-    t, y = np.asarray(result.t), np.asarray(result["y_w1"])
-    if result.status != "ok":
-        how = ending(result.status, np.asarray(result.x))
-        amp = float(np.max(np.abs(y[-50:]))) if y.size else math.nan
-        if how == DERAILED:
-            return RunVerdict(DERAILED, amp, math.nan, f"derailed: left the track "
-                              f"({result.message})")  # fmt: skip
-        return RunVerdict(BLOW_UP, amp, math.nan, f"blow-up: the integration blew up, not "
-                          f"physics; give a smaller dt ({result.message})")  # fmt: skip
-    t_exc = float(result.excitation_end)
-    if t[-1] <= t_exc:
-        return RunVerdict("undecided", math.nan, math.nan, "undecided: the run ended before "
-                          "the last wheelset left the excitation")  # fmt: skip
-    if two_sided:
-        y = y - float(np.median(y[t >= t[-1] - 1.0]))
-    verdict, amp, rate = judge(t, y, t_exc, judgement, two_sided=two_sided)
-    size = f"{amp * 1e3:.3g} mm"
-    if verdict == STABLE:
-        return RunVerdict("decays", amp, rate, f"decays (below {judgement.decay_amplitude * 1e3:g}"
-                          " mm at the end)")  # fmt: skip
-    if verdict == HUNTING:
-        return RunVerdict("hunting", amp, rate, f"hunting: limit cycle of {size}")
-    if math.isnan(rate):
-        return RunVerdict("undecided", amp, rate, f"undecided: {size} at the end; give a "
-                          "longer duration")  # fmt: skip
-    if rate < 0:
-        return RunVerdict("decays", amp, rate, f"decays: {size} at the end, falling "
-                          f"({rate:.3g} 1/s)")  # fmt: skip
-    return RunVerdict("hunting", amp, rate, f"hunting: {size} at the end, growing "
-                      f"({rate:+.3g} 1/s)")  # fmt: skip
-
-
-def excitation_size(excitation: object, x0: np.ndarray | None = None,
-                    reference: np.ndarray | None = None,
-                    layout: StateLayout = LAYOUT) -> float:  # fmt: skip
-    """Size of what sets a run off (m): the largest lateral offset of the track input (a
-    defect's amplitude, a sampled track's largest alignment) and of the wheelsets' start
-    from the equilibrium ``reference`` (default the centred state); 0 for none."""
-    size = 0.0
-    if isinstance(excitation, SingleDefect):
-        size = abs(excitation.amplitude)
-    elif isinstance(excitation, SampledTrack) and len(excitation.alignment):
-        size = float(np.max(np.abs(excitation.alignment)))
-    if x0 is not None:
-        ys = layout.wheelset_y
-        start = np.asarray(x0, dtype=float)[ys]
-        ref = 0.0 if reference is None else np.asarray(reference, dtype=float)[ys]
-        size = max(size, float(np.max(np.abs(start - ref))))
-    return size
-
-
-def run_until_verdict(
-    model: Model,
-    speed_kmh: float,
-    judgement: Judgement,
-    excitation: object = None,
-    x0: np.ndarray | None = None,
-    method: str = "rk4",
-    dt: float = 1e-3,
-    output_dt: float = 2e-3,
-    route: np.ndarray | None = None,
-    reference: np.ndarray | None = None,
-) -> tuple[str, np.ndarray, np.ndarray, int, float, float, bool]:
-    """Simulate one speed, chunk by chunk, until the verdict on ``y_w1`` is clear.
-
-    Parameters
-    ----------
-    model : Model
-        The assembled model.
-    speed_kmh : float
-        Speed (km/h).
-    judgement : Judgement
-        Thresholds and chunk lengths.
-    excitation : SingleDefect, optional
-        Track input; the verdict is taken on the record after the last wheelset has left it.
-    x0 : numpy.ndarray, optional
-        Initial state (default: the centred equilibrium).
-    method : {"rk4", "dopri5"}
-        Integrator.
-    dt, output_dt : float
-        RK4 step and output interval (s).
-    route : numpy.ndarray, optional
-        Track geometry (a curve's steady route); straight track by default.
-    reference : numpy.ndarray, optional
-        The equilibrium the motion decays to (the steady-curving state in a curve):
-        ``y_w1`` is judged as its distance from ``reference``, and the run starts there
-        unless ``x0`` is given. Default: the centred state.
-
-    Returns
-    -------
-    verdict : {"stable", "hunting", "undecided", "derailed", "blow-up"}
-        The verdict words of :mod:`railhunt.verdicts`; a run that stopped early
-        (``code != OK``) is "derailed" or "blow-up" (:func:`~railhunt.verdicts.ending`).
-    t, x : numpy.ndarray
-        The whole record: times (s) and states.
-    code : int
-        Integrator status (:data:`railhunt.kernel.integrators.STATUS_NAMES`).
-    amplitude, growth_rate : float
-        Final envelope of ``y_w1`` (m) and its log slope (1/s), as :func:`judge` gives them.
-    decided : bool
-        False when ``max_duration`` ran out and the envelope's trend decided.
-    """
-    speed = kmh_to_ms(speed_kmh)
-    t_exc = excitation_end_time(model, excitation, speed)
-    y_w1 = model.layout.y_w1
-    y_ref = 0.0 if reference is None else float(reference[y_w1])
-    if x0 is None:
-        x0 = np.zeros(model.layout.n_state) if reference is None else reference
-    size = excitation_size(excitation, x0, reference, model.layout)
-    if 0 < DECAY_SHARE * size < judgement.decay_amplitude:
-        judgement = replace(judgement, decay_amplitude=DECAY_SHARE * size)
-    t0, x_start = 0.0, np.asarray(x0, dtype=float)
-    duration = t_exc + judgement.chunk
-    linear_rate, equilibrium_rate = least_damped_rate(model, speed,
-                                                      None if reference is None else x0,
-                                                      route)  # fmt: skip
-    ts: list[np.ndarray] = []
-    xs: list[np.ndarray] = []
-    while True:
-        t, x, code, _ = integrate_model(
-            model, speed, duration, x_start, t0=t0, excitation=excitation, method=method,
-            dt=dt, output_dt=output_dt, y_limit=Y_LIMIT, route=route,
-        )  # fmt: skip
-        ts.append(t if not ts else t[1:])
-        xs.append(x if not xs else x[1:])
-        tt, xx = np.concatenate(ts), np.concatenate(xs)
-        y = xx[:, y_w1] if reference is None else xx[:, y_w1] - y_ref
-        if code != OK:
-            how = ending(STATUS_NAMES[code], xx)
-            return how, tt, xx, code, float(np.max(np.abs(y[-50:]))), math.nan, True
-        final = tt[-1] - t_exc >= judgement.max_duration - 1e-9
-        verdict, amp, rate = judge(tt, y, t_exc, judgement, final=final,
-                                   two_sided=reference is not None,
-                                   linear_rate=linear_rate,
-                                   equilibrium_rate=equilibrium_rate)  # fmt: skip
-        if verdict is not None:
-            return verdict, tt, xx, code, amp, rate, not final
-        t0, x_start, duration = float(t[-1]), x[-1].copy(), judgement.chunk
 
 
 def run_trial(
@@ -495,9 +232,9 @@ def run_trial(
     )  # fmt: skip
     status = STATUS_NAMES[code]
     # The dynamic limits reached on straight track (a curve's search stops at its steady
-    # state's); they inform and change no verdict.
-    limits = (record_limits(model, kmh_to_ms(speed_kmh), t, x, excitation) if route is None
-              else [])  # fmt: skip
+    # state's); they inform and change no verdict, and are computed when first read.
+    limits = (_Replay(model, speed_kmh, excitation, judgement, method, dt, output_dt)
+              if route is None else [])  # fmt: skip
     return Trial(speed_kmh, verdict, amp, rate, float(t[-1]), decided, status,
                  trial_reason(verdict, amp, rate, decided, float(t[-1]), status), limits)
 

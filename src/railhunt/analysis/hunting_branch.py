@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from railhunt.analysis.linear import LinearCriticalSpeed, linear_critical_speed
-from railhunt.analysis.modes import _is_wheelset_mode
+from railhunt.analysis.modes import is_wheelset_mode
 from railhunt.model import Model
 from railhunt.units import kmh_to_ms
 
@@ -108,7 +108,7 @@ def hunting_mode_at(model: Model, speed_kmh: float, w: np.ndarray, vecs: np.ndar
     crossing pair (:func:`crossing_mode_index`)."""
     layout, a = model.layout, model.half_gauge
     osc = np.flatnonzero(w.imag > 1e-6)
-    wheelset = {int(k) for k in osc if _is_wheelset_mode(vecs[:layout.n_dof, k], a, layout)}
+    wheelset = {int(k) for k in osc if is_wheelset_mode(vecs[:layout.n_dof, k], a, layout)}
     best = _least_damped(w, osc, wheelset)
     # The continuation can only change the pick when it ends on a mode that is not a
     # wheelset mode and is at least as lightly damped as the best wheelset mode: where

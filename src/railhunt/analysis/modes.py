@@ -43,12 +43,12 @@ def hunting_mode_index(w: np.ndarray, vecs: np.ndarray, a: float,
         if best_any < 0 or w[k].real > w[best_any].real:
             best_any = k
         better = best < 0 or w[k].real > w[best].real
-        if better and _is_wheelset_mode(vecs[:layout.n_dof, k], a, layout):
+        if better and is_wheelset_mode(vecs[:layout.n_dof, k], a, layout):
             best = k
     return best if best >= 0 else best_any
 
 
-def _is_wheelset_mode(q: np.ndarray, a: float, layout: StateLayout = LAYOUT) -> bool:
+def is_wheelset_mode(q: np.ndarray, a: float, layout: StateLayout = LAYOUT) -> bool:
     """True when the largest lateral amplitude of mode shape ``q`` (coordinates) is a wheelset's."""
     lateral = np.abs(q[layout.body_y])
     wheel = np.concatenate([np.abs(q[layout.wheelset_y]), a * np.abs(q[layout.wheelset_psi])])
@@ -79,7 +79,9 @@ def least_damped_rate(model: Model, speed: float, state: np.ndarray | None = Non
     """Real parts (1/s) of the least damped oscillatory eigenvalue (NaN if none oscillates)
     and of the least damped eigenvalue of all, of the model linearised at ``state``
     (default the centred state) at ``speed`` (m/s)."""
-    jac = model.jacobian(speed) if state is None else model.jacobian(speed, state, route=route)
-    w = np.linalg.eigvals(jac)
+    if state is None:
+        w = model.centred_eigenvalues(speed)
+    else:
+        w = np.linalg.eigvals(model.jacobian(speed, state, route=route))
     osc = w[w.imag > 1e-6]
     return (float(np.max(osc.real)) if osc.size else math.nan), float(np.max(w.real))

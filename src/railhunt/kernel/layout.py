@@ -336,7 +336,8 @@ class SystemArrays(NamedTuple):
     Attributes
     ----------
     linear : numpy.ndarray, shape (n_dof, 2 n_dof)
-        ``-M^-1 [K + G, C]``: accelerations from the linear suspension.
+        ``-M^-1 [K + G, C]``: accelerations from the linear suspension (Fortran order:
+        :func:`railhunt.kernel.rhs.rhs` runs down its columns).
     damper_rows : numpy.ndarray, shape (n_damper, n_dof)
         Yaw damper elongation rows ``B_d`` (elongation = ``B_d @ q``).
     damper_acc : numpy.ndarray, shape (n_dof, n_damper)

@@ -177,13 +177,16 @@ def rhs(t: float, x: np.ndarray, v: float, s: SystemArrays, out: np.ndarray) -> 
     curved = route.shape[0] > 0
 
     # Suspension: rates, linear springs and dampers with gravity's roll terms.
+    # Column by column: each acceleration sums the same products in the same order as a
+    # row-by-row dot product (so the same bits), but the inner loop over the rows runs
+    # down a column of the Fortran-ordered matrix (Model.system) and vectorises.
     for i in range(nq):
         out[i] = x[nq + i]
-    for i in range(nq):
-        acc = 0.0
-        for k in range(2 * nq):
-            acc += lin[i, k] * x[k]
-        out[nq + i] = acc
+        out[nq + i] = 0.0
+    for k in range(2 * nq):
+        xk = x[k]
+        for i in range(nq):
+            out[nq + i] += lin[i, k] * xk
     # Yaw dampers (Maxwell elements): the force is a state.
     for d in range(dpar.shape[0]):
         f = x[fz + d]
@@ -295,7 +298,8 @@ def derived(t: np.ndarray, x: np.ndarray, v: float, s: SystemArrays,
     guiding force ``Y`` of each left wheel, then of each right wheel (the force of the
     wheel on its rail, N, positive outward from the track centre); the wheel loads ``Q``
     of the left wheels, then of the right wheels (N); then ``d(rate)/dt`` of each
-    coordinate in ``acc_index`` (m/s^2 or rad/s^2).
+    coordinate in ``acc_index`` (m/s^2 or rad/s^2). With ``acc_index`` empty the whole
+    right-hand side is not evaluated (the wheel/rail forces alone: half the cost).
     """
     nq = s.linear.shape[0]
     nw = s.wheelsets.shape[0]
@@ -304,7 +308,8 @@ def derived(t: np.ndarray, x: np.ndarray, v: float, s: SystemArrays,
     out = np.empty(x.shape[1])
     for i in range(n):
         xi = x[i]
-        rhs(t[i], xi, v, s, out)
+        if acc_index.shape[0] > 0:
+            rhs(t[i], xi, v, s, out)
         for j in range(nw):
             fy, _, f_l, f_r, q_l, q_r = wheelset_track_forces(j, t[i], xi, v, s)
             res[i, j] = -fy

@@ -156,8 +156,10 @@ def _check_range(
     return lo, hi
 
 
-def _tied(values: dict[str, float], ties: dict[str, tuple[str, float]],
-          specs: Mapping[str, ParameterSpec] = PARAMETERS) -> dict[str, float]:  # fmt: skip
+def tied_values(values: dict[str, float], ties: dict[str, tuple[str, float]],
+                specs: Mapping[str, ParameterSpec] = PARAMETERS) -> dict[str, float]:  # fmt: skip
+    """``values`` with each tied parameter set from its leader (``ties``: follower ->
+    ``(leader, factor)``, :func:`parse_ties`), checked against its valid range."""
     out = dict(values)
     for follower, (leader, factor) in ties.items():
         if leader in out:
@@ -216,7 +218,7 @@ def build_design(
 
     def add(line: str, values: dict[str, float]) -> None:
         plain = {k: float(v) for k, v in values.items()}  # no numpy scalars in the files
-        points.append(Point(len(points), line, _tied(plain, tie_map, specs)))
+        points.append(Point(len(points), line, tied_values(plain, tie_map, specs)))
 
     if design in ("lines", "grid"):
         arrays = {name: _check_values(name, parameters[name], specs) for name in names}

@@ -54,7 +54,7 @@ class Evaluation:
         self.meta: dict[str, Any] = {}
         if isinstance(model, Vehicle):
             from railhunt.provenance import provenance, vehicle_block
-            from railhunt.studies.sweep import _task
+            from railhunt.studies.sweep import point_task
             from railhunt.track import SingleDefect
 
             groups = vehicle_outputs(columns)
@@ -70,7 +70,7 @@ class Evaluation:
                 self.meta["frequency_speed_kmh"] = frequency_speed(Point(0, "", {}), self.names,
                                                                    frequency_speed_kmh)  # fmt: skip
             self.task: Callable[[Any], dict[str, Any]] = functools.partial(
-                _task, vehicle=model, outputs=groups, excitation=excitation,
+                point_task, vehicle=model, outputs=groups, excitation=excitation,
                 creep_law=creep_law, amplitude=None, output_options=options)  # fmt: skip
             self.warm_up: Callable[[], None] | None = _warm_up
         else:

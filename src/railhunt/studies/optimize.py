@@ -24,7 +24,7 @@ from typing import Any
 
 import numpy as np
 
-from railhunt.studies.design import Point, _tied, parse_ties
+from railhunt.studies.design import Point, parse_ties, tied_values
 from railhunt.studies.evaluation import Evaluation
 from railhunt.studies.execute import CONNECT_TIMEOUT, check_connect_timeout, check_workers
 from railhunt.studies.factors import check_model, parse_factors
@@ -176,7 +176,7 @@ def optimize(
     columns = list(dict.fromkeys([c for _, c in objs] + [c for c, _, _ in cons]))
     options = options_from(output_options)
     nominal = model.as_dict() if isinstance(model, Vehicle) else None
-    param_cols = list(_tied({n: 0.0 for n in names}, tie_map))
+    param_cols = list(tied_values({n: 0.0 for n in names}, tie_map))
     evaluation = Evaluation(model, names, param_cols, columns, options, excitation, creep_law)
     from railhunt._cache import source_hash
     from railhunt._version import __version__
@@ -235,7 +235,7 @@ def optimize(
         done_points += len(points)
 
     if nominal is not None:
-        p0 = Point(0, "start", _tied({n: float(nominal[n]) for n in names}, tie_map))
+        p0 = Point(0, "start", tied_values({n: float(nominal[n]) for n in names}, tie_map))
         run([p0], "start")
         start = rows.get(0)
         next_point = 1
@@ -244,7 +244,7 @@ def optimize(
         pop = algorithm.ask()
         x = pop.get("X")
         points = [Point(next_point + i, f"generation {gen}",
-                        _tied({n: float(v) for n, v in zip(names, xi, strict=True)}, tie_map))
+                        tied_values({n: float(v) for n, v in zip(names, xi, strict=True)}, tie_map))
                   for i, xi in enumerate(x)]  # fmt: skip
         next_point += len(points)
         run(points, f"generation {gen + 1}/{generations}")

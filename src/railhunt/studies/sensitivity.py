@@ -34,7 +34,7 @@ from typing import Any
 
 import numpy as np
 
-from railhunt.studies.design import Point, _tied, parse_ties
+from railhunt.studies.design import Point, parse_ties, tied_values
 from railhunt.studies.evaluation import Evaluation
 from railhunt.studies.execute import CONNECT_TIMEOUT, check_connect_timeout, check_workers
 from railhunt.studies.factors import Factor, check_model, parse_factors
@@ -253,7 +253,7 @@ def sensitivity(
         if leader not in names:
             raise ValueError(f"tie {follower} = {leader}: {leader} is not a factor")
     x = sample_of(method, facs, samples, seed)
-    points = [Point(i, method, _tied({n: float(v) for n, v in zip(names, row, strict=True)},
+    points = [Point(i, method, tied_values({n: float(v) for n, v in zip(names, row, strict=True)},
                                      tie_map)) for i, row in enumerate(x)]  # fmt: skip
     param_cols = list(points[0].values)
     options = options_from(output_options)

@@ -171,9 +171,10 @@ def interrupted(exc: BaseException) -> bool:
     return False
 
 
-def _task(item: tuple[Point, float], vehicle: Vehicle, outputs: tuple[str, ...],
-          excitation: object, creep_law: str, amplitude: float | None,
-          output_options: OutputOptions | None = None) -> dict[str, Any]:  # fmt: skip
+def point_task(item: tuple[Point, float], vehicle: Vehicle, outputs: tuple[str, ...],
+               excitation: object, creep_law: str, amplitude: float | None,
+               output_options: OutputOptions | None = None) -> dict[str, Any]:  # fmt: skip
+    """One task of a study: :func:`evaluate_point` of ``(point, frequency speed)``."""
     point, frequency_speed_kmh = item
     return evaluate_point(point, vehicle, outputs, frequency_speed_kmh, excitation, creep_law,
                           amplitude, output_options)  # fmt: skip
@@ -315,7 +316,7 @@ def sweep(
                      speeds, frequency_amplitude, excitation, creep_law)  # fmt: skip
     meta.update(options.describe(outputs))
     # Each task carries its own point and frequency speed (not the whole study's).
-    task = functools.partial(_task, vehicle=vehicle, outputs=outputs,
+    task = functools.partial(point_task, vehicle=vehicle, outputs=outputs,
                              excitation=excitation, creep_law=creep_law,
                              amplitude=frequency_amplitude, output_options=options)  # fmt: skip
     return run_study([(p.index, (p, speeds[p.index])) for p in points], task, meta,

@@ -113,6 +113,25 @@ def optimize_command(ctx, names, froms, tos, tolerances, objectives, constraints
         click.echo(json.dumps(json_safe(traced(data, vehicle)), indent=1))
     else:
         _print(result)
+    _report_lost(result, out)
+
+
+def _report_lost(result, out) -> None:
+    """Exit with status 1 when designs were lost (they can be resumed) or every design
+    failed (the front is empty for want of values, not of good designs)."""
+    status = result.evaluated["status"] if len(result.evaluated) else []
+    lost = int(sum(s == "lost" for s in status))
+    failed = int(sum(s == "failed" for s in status))
+    if lost:
+        how = ("run the same command with --resume to compute them" if out is not None
+               else "run the command again")  # fmt: skip
+        click.echo(f"railhunt: {lost} designs were lost; {how}", err=True)
+        raise SystemExit(1)
+    if len(status) and failed == len(status):
+        where = f": their messages are in {out}" if out is not None else ""
+        click.echo(f"railhunt: error: every one of the {failed} designs failed{where}",
+                   err=True)  # fmt: skip
+        raise SystemExit(1)
 
 
 def _print(result) -> None:

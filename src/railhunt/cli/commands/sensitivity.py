@@ -63,7 +63,7 @@ Examples:
 """
 
 
-def announce_points(vehicle, factors, xs, names, columns, workers, scheduler) -> None:
+def announce_points(vehicle, xs, names, columns, workers, scheduler) -> None:
     """Say before it starts that a study of these sampled points takes more than a minute."""
     from railhunt.studies.design import Point
     from railhunt.studies.factors import vehicle_outputs
@@ -111,8 +111,7 @@ def sensitivity_command(ctx, names, froms, tos, tolerances, method, samples, see
     with running_study(out), scheduler_client(scheduler, connect_timeout) as client:
         facs = parse_factors(vehicle, factors)
         xs = sample_of(method, facs, check_samples(method, samples), seed)
-        announce_points(vehicle, factors, xs, [f.name for f in facs], columns, workers,
-                        scheduler)  # fmt: skip
+        announce_points(vehicle, xs, [f.name for f in facs], columns, workers, scheduler)
         result = sensitivity(vehicle, factors, columns, method=method, samples=samples,
                              seed=seed, ties=ties, out=out, resume=resume,
                              overwrite=overwrite, client=client, workers=workers,
