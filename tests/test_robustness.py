@@ -229,7 +229,7 @@ def test_a_rejected_orbit_is_reported_in_the_source(monkeypatch):
     def fails(*args, **kwargs):
         raise RuntimeError("shooting did not converge at 350.0 km/h (test)")
 
-    monkeypatch.setattr(frequency, "periodic_orbit", fails)
+    monkeypatch.setattr(frequency, "shoot_orbit", fails)  # the shooting it uses
     f = railhunt.hunting_frequency(PAPER, 350.0, initial_amplitude=8e-3)
     assert f.source == "limit-cycle-fft" and math.isnan(f.orbit_frequency_hz)
     assert f.frequency_hz == f.fft_frequency_hz
