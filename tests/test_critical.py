@@ -238,3 +238,38 @@ def test_early_decay_changes_no_verdict_and_shortens_only_stable_trials(monkeypa
         else:
             assert a.duration == pytest.approx(b.duration, abs=1e-9)
             assert a.amplitude == b.amplitude
+
+
+@settings(max_examples=200, deadline=None)
+@given(dt=st.floats(2e-4, 1e-3), output_dt=st.floats(1e-4, 5e-3), duration=st.floats(0.5, 6.0))
+def test_pieces_tile_a_chunk(dt, output_dt, duration):
+    """The pieces of a chunk have its steps; every piece but the last ends on an output."""
+    from railhunt.analysis.judgement import _pieces
+
+    pieces = [round(p / dt) for p in _pieces(duration, dt, output_dt)]
+    stride = max(1, round(output_dt / dt))
+    assert sum(pieces) == round(duration / dt)
+    assert all(p % stride == 0 and p > 0 for p in pieces[:-1])
+
+
+def test_a_piece_shorter_than_the_output_step_changes_nothing(monkeypatch):
+    """At dt = 0.58 ms (3 steps per stored sample) a 3 s chunk ends with a piece of 2
+    steps, which stores nothing: the record is the one of whole chunks, state for state,
+    and the early check reads past it (the early verdict itself is switched off to compare
+    the same length)."""
+    import railhunt.analysis.judgement as judgement
+    from railhunt.model import Model
+
+    model = Model(PAPER)
+    monkeypatch.setattr(judgement, "early_decay", lambda *args: None)
+    dt = 5.8257e-4
+    # At 300 km/h the motion falls below 0.3 mm after 9.5 s: the early check then reads
+    # the record back across the piece that stored nothing.
+    pieces = judgement.run_until_verdict(model, 300.0, Judgement(max_duration=15.0),
+                                         railhunt.SingleDefect(), dt=dt)  # fmt: skip
+    monkeypatch.setattr(judgement, "EARLY_CHECK", 1e9)
+    whole = judgement.run_until_verdict(model, 300.0, Judgement(max_duration=15.0),
+                                        railhunt.SingleDefect(), dt=dt)  # fmt: skip
+    assert pieces[0] == whole[0]
+    assert np.array_equal(pieces[2], whole[2])
+    assert np.allclose(pieces[1], whole[1], rtol=0, atol=1e-12)

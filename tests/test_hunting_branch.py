@@ -71,7 +71,8 @@ def test_hopf_branch_is_measured_on_the_wheelset_that_moves_most():
     keeps y_w1 (0.12 of its rear wheelset's motion), so its diagram does not move."""
     from pathlib import Path
 
-    from railhunt.analysis.continuation import _hopf_start, measure_coordinate
+    from railhunt.analysis.hopf_start import hopf_mode_shape as _hopf_start
+    from railhunt.analysis.hopf_start import measure_coordinate
     from railhunt.analysis.periodic import Shooting
 
     example = Path(__file__).parent.parent / "examples" / "data" / "articulated_pair.toml"

@@ -459,7 +459,7 @@ def test_the_crossing_of_a_stiffly_held_frame_is_hunting():
 def test_the_hopf_start_is_the_crossing_pair():
     """A locomotive's two nearly equal bogie modes: the continuation starts from the pair
     that crosses at the Hopf point, not from the damped one the per-speed pick prefers."""
-    from railhunt.analysis.continuation import _hopf_start
+    from railhunt.analysis.hopf_start import hopf_mode_shape as _hopf_start
     from railhunt.analysis.linear import linear_critical_speed
 
     v = Vehicle.shipped("three_axle_bogie_car")

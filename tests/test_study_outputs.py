@@ -118,3 +118,19 @@ def test_study_outputs_use_the_layouts_own_creep_law_by_default():
     assert default != fold_speed(bogie, creep_law="heuristic").speed_kmh
     for study in (sensitivity.sensitivity, optimize.optimize):
         assert inspect.signature(study).parameters["creep_law"].default is None
+
+
+def test_fold_speed_where_the_two_bogies_hunting_modes_nearly_coincide():
+    """A Table 1 sample (a Sobol study's point) whose front- and rear-bogie hunting modes
+    lie within 0.1 rad/s of each other at the Hopf point: the second small orbit's Newton
+    failed from the first orbit with only y_w1 moved and starts again from the first orbit
+    scaled to the new size; the fold is then found, below the Hopf point, and converged
+    (a finer trace agrees within 0.1 km/h)."""
+    v = Vehicle.paper2019().replace(C_d1=877830.7957574725, K_d=968745.8178028464,
+                                    C_d2=91832.75837730616, mu=0.20803257715888324,
+                                    K_px=36341750.6031692, f11=10652708.549052477,
+                                    f22=10652708.549052477, C_sy=52897.47644215822)  # fmt: skip
+    fine = fold_speed(v)
+    finer = fold_speed(v, fine_step_kmh=0.5, fine_step_amplitude=3e-5)
+    assert fine.turned and fine.speed_kmh < fine.hopf_speed_kmh - 5.0
+    assert abs(fine.speed_kmh - finer.speed_kmh) < 0.1

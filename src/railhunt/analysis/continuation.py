@@ -38,8 +38,18 @@ from railhunt.analysis.branches import (
     on_branch,
 )
 from railhunt.analysis.curving import EquilibriumPath
-from railhunt.analysis.linear import eigenvalues, hunting_mode_index, linear_critical_speed
-from railhunt.analysis.modes import sorted_eig
+
+# The branch's start (crossing mode, measure coordinate, small orbits) lives in
+# railhunt.analysis.hopf_start; its names are importable from here as before.
+from railhunt.analysis.hopf_start import (  # noqa: F401
+    LEADING_SHARE,
+    SMALL_ORBIT_SEEDS,
+    hopf_branch_start,
+    hopf_mode_shape,
+    measure_coordinate,
+    small_orbit_seeds,
+)
+from railhunt.analysis.linear import linear_critical_speed
 from railhunt.analysis.periodic import (
     PeriodicOrbit,
     Shooting,
@@ -71,64 +81,11 @@ def _check_range(speed_range_kmh: tuple[float, float]) -> tuple[float, float]:
     return lo, hi
 
 
-def _hopf_start(model: Model, hopf_kmh: float,
-                path: EquilibriumPath | None = None) -> tuple[np.ndarray, float]:  # fmt: skip
-    """Hunting eigenvector normalised to 1 at :func:`measure_coordinate` (real state
-    shape) and the period (s).
-
-    About the centred state, or about the curving equilibrium of ``path``.
-    """
-    if path is None:
-        w, vecs = eigenvalues(model, kmh_to_ms(hopf_kmh))
-    else:
-        w, vecs = sorted_eig(path.jacobian_kmh(hopf_kmh))
-    k = hunting_mode_index(w, vecs, model.half_gauge, model.layout)
-    if w[k].real < -1e-3:
-        # The pick is clearly damped here, so it is not the pair that crosses at this Hopf
-        # point (two nearly equal bogie modes of a long vehicle): start from the crossing
-        # pair itself, the oscillatory eigenvalue with the largest real part.
-        osc = np.flatnonzero(w.imag > 1e-6)
-        k = int(osc[np.argmax(w.real[osc])])
-    lam = w[k]
-    if lam.imag < 0:
-        lam, vec = np.conj(lam), np.conj(vecs[:, k])
-    else:
-        vec = vecs[:, k]
-    vec = vec / vec[measure_coordinate(model, vec)]
-    return np.real(vec), 2 * math.pi / abs(lam.imag)
-
-
-def measure_coordinate(model: Model, shape: np.ndarray) -> int:
-    """Index of the displacement that measures the Hopf branch: its phase condition, step
-    control, small orbits and end at a second Hopf point use it.
-
-    y_w1, unless the leading wheelset moves less than :data:`LEADING_SHARE` of the wheelset
-    that moves most laterally in the crossing mode ``shape`` (complex or real state
-    vector): then that wheelset's lateral displacement. The paper's vehicle: y_w1 (it
-    moves 0.12 of the rear wheelset at the Hopf point); the articulated pair of
-    ``examples/data/articulated_pair.toml``, whose crossing mode lives on its rear bogie
-    (y_w1 0.066 of y_w6): y_w6.
-    """
-    layout = model.layout
-    amp = np.abs(shape[layout.wheelset_y])
-    k = int(np.argmax(amp))
-    if abs(shape[layout.y_w1]) >= LEADING_SHARE * amp[k]:
-        return layout.y_w1
-    return int(layout.wheelset_y[k])
-
-
-#: The leading wheelset measures the Hopf branch while it moves at least this share of the
-#: wheelset that moves most in the crossing mode (:func:`measure_coordinate`).
-LEADING_SHARE = 0.1
-
-
-#: The measure coordinate's ``x(0)`` (:func:`measure_coordinate`, y_w1 for the paper's
-#: vehicle) of the three small orbits that start the Hopf branch (m).
-SMALL_ORBIT_SEEDS = (5e-5, 1e-4, 2e-4)
-
-
 @dataclass
-class _Limits:
+class BranchLimits:
+    """Where and how finely a branch is traced: its speed range (km/h), largest amplitude
+    (m) and number of orbits, the largest steps in speed (km/h) and amplitude (m)."""
+
     lo: float
     hi: float
     max_amplitude: float
@@ -140,10 +97,10 @@ class _Limits:
     newton_tol: float = 1e-9  # corrector's tolerance (scaled residual)
 
 
-class _Tracer:
+class BranchTracer:
     """Pseudo-arclength continuation of one direction of a branch."""
 
-    def __init__(self, shoot: Shooting, limits: _Limits,
+    def __init__(self, shoot: Shooting, limits: BranchLimits,
                  on_point: Callable[[PeriodicOrbit], None] | None) -> None:  # fmt: skip
         self.shoot = shoot
         self.limits = limits
@@ -171,7 +128,7 @@ class _Tracer:
         return t / np.linalg.norm(t)
 
     def trace(self, u0: np.ndarray, lin0: tuple, tangent: np.ndarray, ds: float,
-              budget: int, limits: _Limits | None = None,
+              budget: int, limits: BranchLimits | None = None,
               stop: Callable[[list[PeriodicOrbit]], str] | None = None,
               ) -> tuple[list[PeriodicOrbit], str, bool, bool]:  # fmt: skip
         """Follow the branch from ``u0`` along ``tangent``.
@@ -310,7 +267,7 @@ def bifurcation_diagram(
     for a in seed_amplitudes:
         if not (math.isfinite(a) and 0 < a < 0.025):
             raise ValueError(f"seed_amplitudes contains {a!r} m: each must be in (0, 0.025) m")
-    limits = _Limits(lo, hi, max_amplitude, int(max_points), max_step_kmh, max_step_amplitude)
+    limits = BranchLimits(lo, hi, max_amplitude, int(max_points), max_step_kmh, max_step_amplitude)
     model = Model(vehicle, creep_law=creep_law)
     linear = linear_critical_speed(vehicle, max_kmh=2000.0, tol_kmh=1e-3, creep_law=creep_law,
                                    curve=curve)  # fmt: skip
@@ -322,7 +279,7 @@ def bifurcation_diagram(
         where = "centred" if curve is None else "steady-curving"
         raise ValueError(f"the {where} equilibrium stays stable up to 2000 km/h: no Hopf point")
     path = None if curve is None else EquilibriumPath(model, curve)
-    shape, period0 = _hopf_start(model, hopf, path)
+    shape, period0 = hopf_mode_shape(model, hopf, path)
     shoot = Shooting(model, symmetric=symmetric and curve is None, dt=dt,
                      dt_speed=kmh_to_ms(max(hi, hopf)),
                      route=None if path is None else path.route,
@@ -330,7 +287,7 @@ def bifurcation_diagram(
                      phase_coordinate=measure_coordinate(model, shape))  # fmt: skip
     shoot.set_period_hint(period0)
     x_hopf = np.zeros(shoot.n_state) if path is None else path.state(kmh_to_ms(hopf))
-    tracer = _Tracer(shoot, limits, on_point)
+    tracer = BranchTracer(shoot, limits, on_point)
 
     # 1. Three small orbits with the measure coordinate's x(0) fixed (natural parameter),
     # from the eigenvector.
@@ -398,58 +355,6 @@ def bifurcation_diagram(
     return BifurcationDiagram(branches, hopf, hopf_from_orbits, linear.frequency_hz, lowest,
                               hopf_type, (lo, hi), complete, "; ".join(messages),
                               fold_below_range=below)  # fmt: skip
-
-
-def small_orbit_seeds(shoot: Shooting, shape: np.ndarray) -> tuple[float, ...]:
-    """The measure coordinate's ``x(0)`` of the three small orbits of the Hopf branch (m).
-
-    Small orbits are small on every wheelset: where the crossing mode ``shape`` (normalised
-    to 1 at :func:`measure_coordinate`) moves another wheelset more than that, the seeds
-    shrink by that ratio (the paper's vehicle: y_w1, the measure, moves most, the seeds
-    are :data:`SMALL_ORBIT_SEEDS`).
-    """
-    largest = float(np.max(np.abs(shape[shoot.model.layout.wheelset_y])))
-    if largest > 1.0:
-        return tuple(s / largest for s in SMALL_ORBIT_SEEDS)
-    return SMALL_ORBIT_SEEDS
-
-
-def hopf_branch_start(shoot: Shooting, tracer: _Tracer, x_hopf: np.ndarray, shape: np.ndarray,
-                      period0: float, hopf: float,
-                      ) -> list[tuple[np.ndarray, PeriodicOrbit, tuple]]:  # fmt: skip
-    """Three small orbits of the Hopf branch, the measure coordinate's ``x(0)``
-    (:func:`measure_coordinate`) fixed at 0.05, 0.1 and 0.2 mm.
-
-    Started from the hunting eigenvector ``shape`` about ``x_hopf`` and the Hopf period
-    (natural parameter: the speed is an unknown). Returns ``(u, orbit, linearisation)``
-    of each, in order of amplitude.
-    """
-    iy = tracer.iy
-    seeds = small_orbit_seeds(shoot, shape)
-    small: list[tuple[np.ndarray, PeriodicOrbit, tuple]] = []
-    u = shoot.pack(x_hopf + seeds[0] * shape, period0, kmh_to_ms(hopf))
-    for n, eps in enumerate(seeds):
-        target = (x_hopf[tracer.measure] + eps) / shoot.scale[tracer.measure]
-        if n >= 2:
-            u = small[-1][0] + (small[-1][0] - small[-2][0]) * (eps - seeds[n - 1]) / (
-                seeds[n - 1] - seeds[n - 2])  # fmt: skip
-        u = u.copy()
-        u[iy] = target
-
-        def fun(w: np.ndarray, target: float = target) -> np.ndarray:
-            return np.append(shoot.residual(w), w[iy] - target)
-
-        def jac_fun(w: np.ndarray, r: np.ndarray) -> np.ndarray:
-            row = np.zeros(w.size)
-            row[iy] = 1.0
-            return np.vstack([shoot.jacobian(w, r[:-1]), row])
-
-        u, norm, it, ok, _ = newton(fun, jac_fun, u, tol=1e-9, max_iter=20)
-        if not ok:
-            raise RuntimeError(f"no small limit cycle found near the Hopf point ({hopf:.1f} km/h)")
-        orbit, lin = tracer.solve(u, norm, it)
-        small.append((u, orbit, lin))
-    return small
 
 
 def _seed_orbit(model: Model, shoot: Shooting, speed_kmh: float, amplitude: float,
@@ -597,3 +502,7 @@ def bifurcation_family(
         member = vehicle.replace(**{parameter: value})
         out.append((value, bifurcation_diagram(member, speed_range_kmh, **kwargs)))
     return out
+
+
+#: The former private name of :func:`railhunt.analysis.hopf_start.hopf_mode_shape`.
+_hopf_start = hopf_mode_shape

@@ -33,10 +33,10 @@ import numpy as np
 
 from railhunt.analysis.branches import make_branch
 from railhunt.analysis.continuation import (
-    _hopf_start,
-    _Limits,
-    _Tracer,
+    BranchLimits,
+    BranchTracer,
     hopf_branch_start,
+    hopf_mode_shape,
     measure_coordinate,
     small_orbit_seeds,
 )
@@ -170,15 +170,15 @@ def fold_speed(
     hopf = linear.speed_kmh
     if not math.isfinite(hopf):
         raise ValueError("the centred equilibrium stays stable up to 2000 km/h: no Hopf point")
-    shape, period0 = _hopf_start(model, hopf)
+    shape, period0 = hopf_mode_shape(model, hopf)
     shoot = Shooting(model, symmetric=True, dt_speed=kmh_to_ms(hopf),
                      phase_coordinate=measure_coordinate(model, shape))
     shoot.set_period_hint(period0)
     smallest = 0.75 * small_orbit_seeds(shoot, shape)[-1]
-    coarse = _Limits(min_kmh, hopf + 50.0, max_amplitude, int(max_points), coarse_step_kmh,
+    coarse = BranchLimits(min_kmh, hopf + 50.0, max_amplitude, int(max_points), coarse_step_kmh,
                      coarse_step_amplitude, min_amplitude=smallest, max_ds=max_ds,
                      newton_tol=coarse_tol)  # fmt: skip
-    tracer = _Tracer(shoot, coarse, None)
+    tracer = BranchTracer(shoot, coarse, None)
     small = hopf_branch_start(shoot, tracer, np.zeros(shoot.n_state), shape, period0, hopf)
     tol = max(2.0, 0.01 * hopf)
 
@@ -206,7 +206,7 @@ def fold_speed(
     # (the vertex of the parabola through the three coarse points around the lowest).
     speeds = np.array([o.speed_kmh for o in orbits])
     low = int(np.argmin(speeds))
-    fine = _Limits(min_kmh, hopf + 50.0, max_amplitude, 60, fine_step_kmh, fine_step_amplitude)
+    fine = BranchLimits(min_kmh, hopf + 50.0, max_amplitude, 60, fine_step_kmh, fine_step_amplitude)
     before = 1 <= low < len(orbits) - 1 and _vertex_before(orbits[low - 1:low + 2])
     u0 = shoot.pack(orbits[low].state, orbits[low].period, kmh_to_ms(speeds[low]))
     prev = orbits[low - 1] if low >= 1 else small[-1][1]
@@ -219,7 +219,7 @@ def fold_speed(
         s = [orbits[low].speed_kmh] + [o.speed_kmh for o in part]
         return "turned" if s[-1] > s[-2] else ""
 
-    tracer_fine = _Tracer(shoot, fine, None)
+    tracer_fine = BranchTracer(shoot, fine, None)
     pts: list[PeriodicOrbit] = []
     msg_fine = ""
     for direction in (t0, -t0):  # toward the turn; the other way if it rose at once

@@ -403,9 +403,10 @@ def run_until_verdict(
                 model, speed, span, x_start, t0=t0, excitation=excitation, method=method,
                 dt=dt, output_dt=output_dt, y_limit=Y_LIMIT, route=route,
             )  # fmt: skip
-            ts.append(t if not ts else t[1:])
-            xs.append(x if not xs else x[1:])
-            ys.append(xs[-1][:, y_w1] - y_ref)
+            if not ts or t.size > 1:  # a piece shorter than the output step stores nothing
+                ts.append(t if not ts else t[1:])
+                xs.append(x if not xs else x[1:])
+                ys.append(xs[-1][:, y_w1] - y_ref)
             t0, x_start = float(t[-1]), x[-1].copy()
             if code != OK or k == len(pieces) - 1:
                 break
