@@ -271,22 +271,16 @@ def hunting_frequency(
                 # A run judged early may still be passing a saddle cycle (over the defect
                 # at 350 km/h the paper's car lingers at one for 3 s): run on to SETTLE s
                 # before shooting for the cycle it hunts on.
-                tt, xx, more, _ = integrate_model(model, speed, settle, x[-1], t0=float(t[-1]),
-                                                  excitation=excitation, dt=dt,
-                                                  output_dt=2e-3)  # fmt: skip
-                if more == 0:
-                    t, x = np.concatenate([t, tt[1:]]), np.concatenate([x, xx[1:]])
+                t, x, ok = _run_on(model, speed, settle, t, x, excitation, dt)
+                if ok:
                     f_fft, amp = _spectrum_peak(t, x[:, y_w1], fft_window, sample_rate)
             orbit, rejected = _refine_orbit(model, speed_kmh, t, x, dt, f_fft, amp)
             extended = 0.0
             while orbit is None and extended < REFINE_EXTENSION:
                 # Not yet close enough to the cycle for Newton: run on, and shoot again.
-                tt, xx, more, _ = integrate_model(model, speed, REFINE_CHUNK, x[-1],
-                                                  t0=float(t[-1]), excitation=excitation,
-                                                  dt=dt, output_dt=2e-3)  # fmt: skip
-                if more != 0:
+                t, x, ok = _run_on(model, speed, REFINE_CHUNK, t, x, excitation, dt)
+                if not ok:
                     break
-                t, x = np.concatenate([t, tt[1:]]), np.concatenate([x, xx[1:]])
                 extended += REFINE_CHUNK
                 f_fft, amp = _spectrum_peak(t, x[:, y_w1], fft_window, sample_rate)
                 orbit, _ = _refine_orbit(model, speed_kmh, t, x, dt, f_fft, amp)
@@ -305,6 +299,17 @@ def hunting_frequency(
     # The run left the track (derailed) or blew up (numerics): no frequency.
     return HuntingFrequency(speed_kmh, math.nan, "limit-exceeded", verdict, math.nan, f_eig,
                             zeta, math.nan, math.nan, t, y, vd, v_u)  # fmt: skip
+
+
+def _run_on(model: Model, speed: float, span: float, t: np.ndarray, x: np.ndarray,
+            excitation: object, dt: float) -> tuple[np.ndarray, np.ndarray, bool]:  # fmt: skip
+    """The record ``(t, x)`` run on by ``span`` s at ``speed`` (m/s), stored every 2 ms,
+    and whether the run went on cleanly (else the record as it was)."""
+    tt, xx, code, _ = integrate_model(model, speed, span, x[-1], t0=float(t[-1]),
+                                      excitation=excitation, dt=dt, output_dt=2e-3)  # fmt: skip
+    if code != 0:
+        return t, x, False
+    return np.concatenate([t, tt[1:]]), np.concatenate([x, xx[1:]]), True
 
 
 def _blowoff_velocity(model: Model) -> float:

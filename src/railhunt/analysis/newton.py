@@ -41,21 +41,31 @@ def newton(
             du = np.linalg.solve(jac, -r)
         except np.linalg.LinAlgError:
             return u, norm, it, False, jac
-        lam = 1.0
-        for _ in range(halvings):
-            un = u + lam * du
-            rn = fun(un)
-            nn = float(np.max(np.abs(rn)))
-            if math.isfinite(nn) and nn < norm:
-                break
-            lam *= 0.5
-        else:
+        step = halved_step(fun, u, du, norm, halvings)
+        if step is None:
             if not fresh:
                 jac = None  # stalled with an old Jacobian: refresh and retry
                 continue
             return u, norm, it, False, jac
+        _, un, rn, nn = step
         ratio = nn / norm
         u, r, norm = un, rn, nn
         if ratio > 0.25:
             jac = None  # slow (chord) convergence: refresh the Jacobian
     return u, norm, max_iter, norm < tol, jac
+
+
+def halved_step(fun, u: np.ndarray, du: np.ndarray, norm: float,
+                halvings: int) -> tuple[float, np.ndarray, np.ndarray, float] | None:  # fmt: skip
+    """The Newton step ``du`` from ``u``, halved up to ``halvings`` times until the
+    residual's largest entry falls below ``norm``: ``(lam, u_new, r_new, norm_new)``, or
+    None when no step of those lowers it."""
+    lam = 1.0
+    for _ in range(halvings):
+        un = u + lam * du
+        rn = fun(un)
+        nn = float(np.max(np.abs(rn)))
+        if math.isfinite(nn) and nn < norm:
+            return lam, un, rn, nn
+        lam *= 0.5
+    return None

@@ -25,6 +25,8 @@ from collections.abc import Callable
 import numpy as np
 import scipy.linalg as sla
 
+from railhunt.analysis.newton import halved_step
+
 #: Directional finite-difference step, relative to the direction's largest entry (the
 #: shooting residuals' unknowns are scaled to natural units, as their FD columns' 1e-5).
 DIRECTION_STEP = 1e-5
@@ -125,15 +127,8 @@ def newton_krylov(
                 du = np.linalg.solve(jac, -r)
             except np.linalg.LinAlgError:
                 return u, norm, it, False, jac
-        lam = 1.0
-        for _ in range(halvings):
-            un = u + lam * du
-            rn = fun(un)
-            nn = float(np.max(np.abs(rn)))
-            if math.isfinite(nn) and nn < norm:
-                break
-            lam *= 0.5
-        else:
+        halved = halved_step(fun, u, du, norm, halvings)
+        if halved is None:
             if not fresh:
                 jac = None  # stalled with an old Jacobian: refresh and retry
                 continue
@@ -141,6 +136,7 @@ def newton_krylov(
                 previous = jac = None  # stalled on a Krylov step: retry with jac_fun
                 continue
             return u, norm, it, False, jac
+        lam, un, rn, nn = halved
         ratio = nn / norm
         step = lam * du
         # The Jacobian with Broyden's update along the step: the next refresh's start.
