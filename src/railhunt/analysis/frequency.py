@@ -399,7 +399,8 @@ def _refine_orbit(model: Model, speed_kmh: float, t: np.ndarray, x: np.ndarray, 
             # settles on the stable cycle it hunts on); the run goes on.
             return None, (f"the orbit found ({orbit.frequency_hz:.4g} Hz, "
                           f"{orbit.amplitude * 1e3:.3g} mm) is the run's but unstable: the "
-                          "run is passing a saddle cycle, not hunting on it")  # fmt: skip
+                          "run is passing a saddle cycle, or hunts on no periodic cycle "
+                          "near it")  # fmt: skip
         reasons.append(f"the orbit found ({orbit.frequency_hz:.4g} Hz, "
                        f"{orbit.amplitude * 1e3:.3g} mm, {'stable' if orbit.stable else 'unstable'}"
                        f") is not the simulated cycle (FFT {f_fft:.4g} Hz, last amplitude "
