@@ -129,7 +129,7 @@ def test_judge_run_tells_decay_from_hunting_apart_from_the_solver():
     assert hunting.verdict == "hunting" and hunting.text.startswith("hunting: limit cycle")
     assert hunting.amplitude == pytest.approx(9.625e-3, abs=1e-4)  # the orbit's 9.625 mm
     decays = judge_run(railhunt.simulate(PAPER, 250, duration=10.0, excitation=SingleDefect()))
-    assert decays.verdict == "decays" and decays.short == "decays"
+    assert decays.verdict == "stable" and decays.short == "stable"  # the verdict words
     short = judge_run(railhunt.simulate(PAPER, 350, duration=0.2, excitation=SingleDefect()))
     assert short.verdict == "undecided" and "excitation" in short.text
 

@@ -5,6 +5,7 @@ stochastic and straight-track searches carry the limits their runs reach."""
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -13,8 +14,10 @@ from click.testing import CliRunner
 import railhunt
 from railhunt import Curve, Vehicle
 from railhunt.cli import main
+from railhunt.validity import LIMIT_NAMES
 
 PAPER = Vehicle.paper2019()
+ROOT = Path(__file__).resolve().parents[1]
 
 
 def run(*args: str):
@@ -46,8 +49,14 @@ def test_the_stochastic_search_carries_the_limits_its_runs_reach():
     sim, _ = run_on_track(PAPER, top.speed_kmh, track)
     assert [lim.to_dict() for lim in top.limits] == [lim.to_dict() for lim in sim.limits]
     assert top.limits, "the fastest run breaks the criterion: it reaches a limit too"
-    assert len(res.warnings) == sum(len(a.limits) for a in res.trials)
-    assert any(w.startswith(f"{top.speed_kmh:g} km/h: limit reached: ") for w in res.warnings)
+    # every run's limits in the details; one summary per kind in the warnings, and none
+    # says "limit reached" (they stop nothing)
+    assert len(res.details) == sum(len(a.limits) for a in res.trials)
+    assert f"{top.speed_kmh:g} km/h: {top.limits[0].text}" in res.details
+    kinds = {lim.name for a in res.trials for lim in a.limits}
+    assert [s.name for s in res.limit_summary] == [n for n in LIMIT_NAMES if n in kinds]
+    assert res.warnings == [s.text for s in res.limit_summary]
+    assert not any("limit reached" in w for w in res.warnings + res.details)
     assert all(lim.place.endswith(" km/h") for lim in res.limits)
 
 
@@ -62,17 +71,29 @@ def test_a_straight_track_search_reports_the_limits_its_trials_reach():
     assert "Y/Q" in {lim.name for lim in hunting.limits}
     yq = next(lim for lim in hunting.limits if lim.name == "Y/Q")
     assert yq.value > 0.8 and yq.place.startswith("wheelset ")
-    assert f"310 km/h: limit reached: {yq.text}" in res.warnings
+    assert f"310 km/h: {yq.text}" in res.details
     assert any(lim.place.endswith(", 310 km/h") for lim in res.limits)
     assert len(res.limits) == sum(len(t.limits) for t in res.trials)
+    # one summary per kind: the largest value, where, at which speeds; it decides nothing
+    summary = {s.name: s for s in res.limit_summary}
+    assert summary["Y/Q"].value == yq.value and summary["Y/Q"].speeds_kmh == (310.0,)
+    assert summary["Y/Q"].decided is False and "changes no verdict" in summary["Y/Q"].line
+    assert not any("limit reached" in w for w in res.warnings)
+    # docs/critical-speeds.md quotes this search's line as the library gives it
+    page = " ".join((ROOT / "docs" / "critical-speeds.md").read_text(encoding="utf-8").split())
+    assert f"`310 km/h: {yq.text}`" in page
 
 
 def test_the_critical_speed_json_lists_the_trials_limits():
     result = run("critical-speed", "--start", "300", "--step", "10", "--tol", "10", "--json")
     data = json.loads(result.stdout)
     assert data["nonlinear_critical_speed_kmh"] == 300.0
-    assert any(w.startswith("310 km/h: limit reached: Y/Q") for w in data["warnings"])
+    assert any(w.startswith("310 km/h: Y/Q") for w in data["details"])
+    assert any(w.startswith("Y/Q beyond 0.8 (EN 14363) at 310 km/h") for w in data["warnings"])
+    assert {s["name"]: s["speeds_kmh"] for s in data["limit_summary"]}["Y/Q"] == [310.0]
+    assert all(s["decided"] is False for s in data["limit_summary"])
     assert any(d["name"] == "Y/Q" and d["place"].endswith("310 km/h") for d in data["limits"])
+    assert [d["name"] for d in data["trials"][1]["limits"]] == ["Y/Q", "ΣY"]
     assert data["linear_warnings"] == [] and data["linear_curving_limit"] is None
 
 

@@ -27,6 +27,7 @@ are no longer modelled.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass
 from functools import lru_cache
 from typing import Any
@@ -61,6 +62,17 @@ def _wheel_names(n_wheelsets: int) -> tuple[str, ...]:
                  for side in ("left", "right"))  # fmt: skip
 
 
+#: How a limit's SI unit is shown in words: (unit shown, factor).
+_SHOWN = {"N": ("kN", 1e-3), "m": ("mm", 1e3), "1": ("", 1.0), "": ("", 1.0)}
+
+
+def shown(value: float, unit: str) -> str:
+    """``value`` (SI, ``unit``) as a limit's words show it: forces in kN, lengths in mm,
+    three significant digits (``shown(48827.5, "N")`` is ``"48.8 kN"``)."""
+    name, factor = _SHOWN.get(unit, (unit, 1.0))
+    return f"{value * factor:.3g}" + (f" {name}" if name else "")
+
+
 @dataclass(frozen=True)
 class Limit:
     """One limit of the validity envelope that a result reaches.
@@ -90,15 +102,15 @@ class Limit:
 
     @property
     def text(self) -> str:
-        """The limit in words, e.g. ``"Y/Q 0.93 > 0.8 (EN 14363) at wheelset 1 right"``."""
-        unit = f" {self.unit}" if self.unit not in ("", "1") else ""
+        """The limit in words, e.g. ``"Y/Q 0.93 beyond 0.8 (EN 14363) at wheelset 1
+        right, t = 0.308 s"`` (forces in kN and lengths in mm, :func:`shown`)."""
         if math.isnan(self.value):  # no state to measure (e.g. no steady-curving equilibrium)
             return f"{self.name} ({self.source}): {self.place}"
         if self.name == "wheel lift":
-            return (f"wheel lift: Q at the model's floor of {self.limit:.3g} N ({self.source})"
-                    f" at {self.place}")  # fmt: skip
-        return (f"{self.name} {self.value:.3g}{unit} beyond {self.limit:.3g}{unit} "
-                f"({self.source}) at {self.place}")  # fmt: skip
+            return (f"wheel lift: Q at the model's floor of {shown(self.limit, self.unit)} "
+                    f"({self.source}) at {self.place}")  # fmt: skip
+        return (f"{self.name} {shown(self.value, self.unit)} beyond "
+                f"{shown(self.limit, self.unit)} ({self.source}) at {self.place}")  # fmt: skip
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready: name, limit, value, unit, place, source."""
@@ -343,10 +355,112 @@ class _Times:
 
 
 def warnings_of(limits: list[Limit]) -> list[str]:
-    """The limits in words, one warning each."""
-    return [f"limit reached: {lim.text}" for lim in limits]
+    """The limits in words, one warning each (:attr:`Limit.text`). These are facts about a
+    result, not a verdict: the verdict word *limit reached* is kept for an answer that
+    stops at a limit (a search in a curve, :mod:`railhunt.analysis.curving_limit`)."""
+    return [lim.text for lim in limits]
 
 
-__all__ = ["Limit", "check_wheels", "check_motion", "check_cant_deficiency",
-           "curving_limits", "run_limits", "record_limits", "flange_clearance",
-           "warnings_of"]  # fmt: skip
+def _location(place: str) -> str:
+    """A limit's place without its time and speed: ``"wheelset 2, t = 0.240 s, 310 km/h"``
+    gives ``"wheelset 2"``."""
+    return place.split(", t = ")[0].split(", row ")[0]
+
+
+def _speeds(speeds: tuple[float, ...]) -> str:
+    """Speeds in words: ``"310 km/h"``, ``"305 and 310 km/h"``, ``"301, 302, 305 and 310
+    km/h"``, or for more than four ``"100-300 km/h (21 speeds)"``."""
+    words = [f"{s:g}" for s in speeds]
+    if len(words) > 4:
+        return f"{words[0]}–{words[-1]} km/h ({len(words)} speeds)"
+    if len(words) > 1:
+        return f"{', '.join(words[:-1])} and {words[-1]} km/h"
+    return f"{words[0]} km/h"
+
+
+@dataclass(frozen=True)
+class LimitSummary:
+    """One kind of limit over the results of a search: the largest value, where, and at
+    which speeds it was reached (:func:`summarize_limits`).
+
+    Attributes
+    ----------
+    name, limit, unit, source : str, float, str, str
+        As :class:`Limit` has them.
+    value : float
+        The largest value reached (SI, ``unit``).
+    place : str
+        Where the largest value was reached (wheel or wheelset, time).
+    speed_kmh : float
+        The speed at which it was reached (km/h).
+    speeds_kmh : tuple of float
+        Every speed at which this limit was reached, ascending (km/h).
+    decided : bool
+        Whether the limit decided the answer (a search that stopped there); False for
+        the limits of a straight-track search's trials, which change no verdict.
+    """
+
+    name: str
+    limit: float
+    unit: str
+    source: str
+    value: float
+    place: str
+    speed_kmh: float
+    speeds_kmh: tuple[float, ...]
+    decided: bool = False
+
+    @property
+    def effect(self) -> str:
+        """Whether it decided anything, in words."""
+        return "the answer stops there" if self.decided else "changes no verdict"
+
+    @property
+    def text(self) -> str:
+        """The summary in words, e.g. ``"ΣY beyond 45.6 kN (EN 14363) at 301, 302, 305
+        and 310 km/h; largest 48.8 kN at wheelset 2, t = 0.240 s, 310 km/h; changes no
+        verdict"``."""
+        return (f"{self.name} beyond {shown(self.limit, self.unit)} ({self.source}) at "
+                f"{_speeds(self.speeds_kmh)}; largest {shown(self.value, self.unit)} at "
+                f"{self.place}, {self.speed_kmh:g} km/h; {self.effect}")  # fmt: skip
+
+    @property
+    def line(self) -> str:
+        """The summary in one line of at most about 80 characters, for a terminal:
+        ``"ΣY 48.8 kN > 45.6 kN (EN 14363) at 301-310 km/h, wheelset 2: changes no
+        verdict"``."""
+        lo, hi = self.speeds_kmh[0], self.speeds_kmh[-1]
+        at = f"{lo:g} km/h" if lo == hi else f"{lo:g}–{hi:g} km/h"
+        return (f"{self.name} {shown(self.value, self.unit)} > {shown(self.limit, self.unit)} "
+                f"({self.source}) at {at}, {_location(self.place)}: {self.effect}")  # fmt: skip
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready: name, limit, value (the largest), unit, source, place and speed_kmh
+        of the largest, speeds_kmh, decided, text."""
+        return {"name": self.name, "limit": self.limit, "value": self.value,
+                "unit": self.unit, "source": self.source, "place": self.place,
+                "speed_kmh": self.speed_kmh, "speeds_kmh": list(self.speeds_kmh),
+                "decided": self.decided, "text": self.text}  # fmt: skip
+
+
+def summarize_limits(reached: Iterable[tuple[float, Limit]],
+                     decided: bool = False) -> list[LimitSummary]:  # fmt: skip
+    """One :class:`LimitSummary` per kind of limit (in the order of :data:`LIMIT_NAMES`)
+    from ``(speed_kmh, limit)`` pairs: the limits the runs of a search reached, each with
+    its run's speed. ``decided``: whether these limits decided the answer."""
+    by_name: dict[str, list[tuple[float, Limit]]] = {}
+    for speed, lim in reached:
+        by_name.setdefault(lim.name, []).append((float(speed), lim))
+    order = {name: i for i, name in enumerate(LIMIT_NAMES)}
+    out = []
+    for name in sorted(by_name, key=lambda n: order.get(n, len(order))):
+        items = by_name[name]
+        speed, top = max(items, key=lambda item: (item[1].value, item[0]))
+        out.append(LimitSummary(name, top.limit, top.unit, top.source, top.value, top.place,
+                                speed, tuple(sorted({s for s, _ in items})), decided))  # fmt: skip
+    return out
+
+
+__all__ = ["Limit", "LimitSummary", "check_wheels", "check_motion", "check_cant_deficiency",
+           "curving_limits", "run_limits", "record_limits", "flange_clearance", "shown",
+           "summarize_limits", "warnings_of"]  # fmt: skip

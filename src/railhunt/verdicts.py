@@ -54,7 +54,10 @@ VERDICTS: dict[str, str] = {
                 "the equilibrium drifts away without oscillating (no Hopf point).",
     LIMIT_REACHED: "a limit of the validity envelope was reached (Y/Q against Nadal, wheel "
                    "unloading, ΣY against Prud'homme, cant deficiency, bump stop, flange "
-                   "clearance): the answer stops there and names the limit.",
+                   "clearance): the answer stops there and names the limit. A limit that "
+                   "stops nothing (a run's peak forces beyond EN 14363 while its verdict is "
+                   "about the motion) is reported by its value and 'changes no verdict', "
+                   "never with this word.",
 }  # fmt: skip
 
 #: A run that stops early blew up when its largest state grew by more than this factor
@@ -120,6 +123,37 @@ def ending(status: str, x: Any, scale: Any = None) -> str:
     if tail.shape[0] >= 8 and np.max(flips) > BLOW_UP_FLIPS * (tail.shape[0] - 1):
         return BLOW_UP
     return DERAILED
+
+
+#: What the trials of one verdict have in common, for :func:`trial_summaries`.
+_IN_COMMON = {
+    UNDECIDED: "each run neither died out nor settled on a cycle",
+    DERAILED: "a wheelset left the track",
+    BLOW_UP: "the integration blew up: numerics, not physics; give a smaller dt",
+}
+
+
+def trial_summaries(trials: Sequence[Any]) -> list[str]:
+    """One line per verdict among *undecided*, *derailed* and *blow-up* over a search's
+    ``trials`` (objects with ``speed_kmh``, ``verdict`` and ``reason``): a single trial
+    with its reason, several by their number and speeds. The undecided line says how the
+    search counts them."""
+    out = []
+    for word, common in _IN_COMMON.items():
+        hit = sorted((t for t in trials if t.verdict == word), key=lambda t: t.speed_kmh)
+        if not hit:
+            continue
+        if len(hit) == 1:
+            reason = getattr(hit[0], "reason", "")
+            text = f"{hit[0].speed_kmh:g} km/h: {word}" + (f" ({reason})" if reason else "")
+        else:
+            text = (f"{word} at {len(hit)} trial speeds, {hit[0].speed_kmh:g}–"
+                    f"{hit[-1].speed_kmh:g} km/h ({common})")  # fmt: skip
+        if word == UNDECIDED:
+            text += (": counted as not stable, the critical speed is the highest speed "
+                     "whose motion died out")  # fmt: skip
+        out.append(text)
+    return out
 
 
 def trial_reason(verdict: str, amplitude: float, rate: float, decided: bool,

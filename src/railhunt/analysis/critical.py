@@ -48,7 +48,7 @@ from railhunt.simulation import auto_step
 from railhunt.stepsize import check_step
 from railhunt.track import SampledTrack, SingleDefect, check_excitation
 from railhunt.units import kmh_to_ms
-from railhunt.validity import record_limits
+from railhunt.validity import LimitSummary, record_limits, summarize_limits
 from railhunt.vehicle import Vehicle
 from railhunt.verdicts import (  # noqa: F401
     BLOW_UP,
@@ -57,6 +57,7 @@ from railhunt.verdicts import (  # noqa: F401
     STABLE,
     UNDECIDED,
     trial_reason,
+    trial_summaries,
 )
 
 
@@ -173,18 +174,34 @@ class CriticalSpeedResult(ResultDisplay):
         return [t for t in self.trials if t.verdict == UNDECIDED]
 
     @property
-    def warnings(self) -> list[str]:
-        """What the answer must be read with: undecided trials, derailments, blow-ups."""
-        out = [f"limit reached: {self.limit.text}"] if self.limit_reached else []
+    def limit_summary(self) -> list[LimitSummary]:
+        """One summary per kind of limit the trials' runs reached (the largest value, where,
+        at which speeds; :class:`railhunt.validity.LimitSummary`). On straight track these
+        change no verdict: the verdict is about the motion."""
+        return summarize_limits(((t.speed_kmh, lim) for t in self.trials
+                                 for lim in t.limits), decided=False)  # fmt: skip
+
+    @property
+    def details(self) -> list[str]:
+        """What :attr:`warnings` summarises, one line each: every undecided, derailed or
+        blown-up trial with its reason, and every limit each trial's run reached."""
+        out = []
         for t in self.trials:
             if t.verdict in (UNDECIDED, DERAILED, BLOW_UP):
                 out.append(f"{t.speed_kmh:g} km/h: {t.verdict}"
                            + (f" ({t.reason})" if t.reason else ""))  # fmt: skip
-        out += [f"{t.speed_kmh:g} km/h: limit reached: {lim.text}" for t in self.trials
-                for lim in t.limits]  # fmt: skip
-        if self.undecided:
-            out.append(f"{len(self.undecided)} trial(s) undecided, counted as not stable: the "
-                       "critical speed is the highest speed whose motion died out")  # fmt: skip
+            out += [f"{t.speed_kmh:g} km/h: {lim.text}" for lim in t.limits]
+        return out
+
+    @property
+    def warnings(self) -> list[str]:
+        """What the answer must be read with, one line per kind: the limit the search
+        stopped at, the undecided, derailed and blown-up trials (:func:`railhunt.verdicts.
+        trial_summaries`), and each kind of limit the trials reached
+        (:attr:`limit_summary`); :attr:`details` has every one."""
+        out = [f"limit reached: {self.limit.text}"] if self.limit_reached else []
+        out += trial_summaries(self.trials)
+        out += [s.text for s in self.limit_summary]
         return out
 
     def _summary(self) -> list[Row]:

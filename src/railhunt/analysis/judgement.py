@@ -237,10 +237,11 @@ class RunVerdict:
 
     Attributes
     ----------
-    verdict : {"decays", "hunting", "undecided"}
-        ``"decays"``: the motion dies out; ``"hunting"``: it settles on a limit cycle or
-        keeps growing; ``"derailed"``: it left the track; ``"blow-up"``: the integration
-        blew up (numerics); ``"undecided"``: the run cannot tell.
+    verdict : {"stable", "hunting", "undecided", "derailed", "blow-up"}
+        The verdict words of :mod:`railhunt.verdicts`: ``"stable"``: the motion died out;
+        ``"hunting"``: it settles on a limit cycle or keeps growing; ``"derailed"``: it left
+        the track; ``"blow-up"``: the integration blew up (numerics); ``"undecided"``: the
+        run cannot tell yet (it ended still decaying, or too short).
     amplitude : float
         Latest envelope of the leading wheelset's lateral displacement (m).
     growth_rate : float
@@ -282,24 +283,24 @@ def judge_run(result: object, judgement: Judgement | None = None,
                           f"physics; give a smaller dt ({result.message})")  # fmt: skip
     t_exc = float(result.excitation_end)
     if t[-1] <= t_exc:
-        return RunVerdict("undecided", math.nan, math.nan, "undecided: the run ended before "
+        return RunVerdict(UNDECIDED, math.nan, math.nan, "undecided: the run ended before "
                           "the last wheelset left the excitation")  # fmt: skip
     if two_sided:
         y = y - float(np.median(y[t >= t[-1] - 1.0]))
     verdict, amp, rate = judge(t, y, t_exc, judgement, two_sided=two_sided)
     size = f"{amp * 1e3:.3g} mm"
     if verdict == STABLE:
-        return RunVerdict("decays", amp, rate, f"decays (below {judgement.decay_amplitude * 1e3:g}"
-                          " mm at the end)")  # fmt: skip
+        return RunVerdict(STABLE, amp, rate, f"stable: the motion died out (below "
+                          f"{judgement.decay_amplitude * 1e3:g} mm at the end)")  # fmt: skip
     if verdict == HUNTING:
-        return RunVerdict("hunting", amp, rate, f"hunting: limit cycle of {size}")
+        return RunVerdict(HUNTING, amp, rate, f"hunting: limit cycle of {size}")
     if math.isnan(rate):
-        return RunVerdict("undecided", amp, rate, f"undecided: {size} at the end; give a "
+        return RunVerdict(UNDECIDED, amp, rate, f"undecided: {size} at the end; give a "
                           "longer duration")  # fmt: skip
     if rate < 0:
-        return RunVerdict("decays", amp, rate, f"decays: {size} at the end, falling "
-                          f"({rate:.3g} 1/s)")  # fmt: skip
-    return RunVerdict("hunting", amp, rate, f"hunting: {size} at the end, growing "
+        return RunVerdict(UNDECIDED, amp, rate, f"undecided: {size} at the end, still "
+                          f"decaying ({rate:.3g} 1/s); a longer duration decides")  # fmt: skip
+    return RunVerdict(HUNTING, amp, rate, f"hunting: {size} at the end, growing "
                       f"({rate:+.3g} 1/s)")  # fmt: skip
 
 

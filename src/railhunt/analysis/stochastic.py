@@ -136,8 +136,9 @@ class Assessment(ResultDisplay):
 
     @property
     def warnings(self) -> list[str]:
-        """The limits the run reached, in words, each with the run's speed."""
-        return [f"{self.speed_kmh:g} km/h: limit reached: {lim.text}" for lim in self.limits]
+        """The limits the run reached, in words, each with the run's speed (they change no
+        verdict: the criterion is about the run's ΣY and frame accelerations)."""
+        return [f"{self.speed_kmh:g} km/h: {lim.text}" for lim in self.limits]
 
     @property
     def sum_y_ratio(self) -> float:
@@ -384,9 +385,24 @@ class StochasticCriticalSpeedResult(ResultDisplay):
                 for a in self.trials for lim in a.limits]  # fmt: skip
 
     @property
-    def warnings(self) -> list[str]:
-        """What the answer must be read with: the limits the runs reached, run by run."""
+    def limit_summary(self) -> list:
+        """One summary per kind of limit the runs reached (the largest value, where, at
+        which speeds; :class:`railhunt.validity.LimitSummary`); they change no verdict."""
+        from railhunt.validity import summarize_limits
+
+        return summarize_limits(((a.speed_kmh, lim) for a in self.trials for lim in a.limits),
+                                decided=False)  # fmt: skip
+
+    @property
+    def details(self) -> list[str]:
+        """Every limit every run reached, one line each (what :attr:`warnings` summarises)."""
         return [w for a in self.trials for w in a.warnings]
+
+    @property
+    def warnings(self) -> list[str]:
+        """What the answer must be read with: one line per kind of limit the runs reached
+        (:attr:`limit_summary`); :attr:`details` has them run by run."""
+        return [s.text for s in self.limit_summary]
 
     def _summary(self) -> list[Row]:
         track = getattr(self.irregularity, "spectrum", None)

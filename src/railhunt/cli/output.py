@@ -19,6 +19,8 @@ __all__ = [
     "fmt",
     "json_safe",
     "linear_critical_speed_line",
+    "print_warnings",
+    "verbose_option",
     "show_progress",
     "spinner",
     "stdout_console",
@@ -195,3 +197,31 @@ def linear_critical_speed_line(linear: Any, curved: bool = False) -> str:
         f"linear critical speed: {linear.speed_kmh:.1f} km/h "
         f"(Hopf point; {mode} at {linear.frequency_hz:.2f} Hz)"
     )
+
+
+#: ``--verbose``: every trial's warning and every limit each run reached, one line each.
+def verbose_option(func: Callable[..., Any]) -> Callable[..., Any]:
+    """Add ``--verbose`` (the detail behind the one-line summaries of warnings)."""
+    import click
+
+    return click.option(
+        "--verbose", "-v", is_flag=True,
+        help="Print every trial's warning and every limit each run reached, one line each "
+             "(by default one summary line per kind; --json has both).")(func)  # fmt: skip
+
+
+def print_warnings(console: Any, result: Any, verbose: bool = False) -> None:
+    """What a search's answer must be read with, one line per kind: its warnings that are
+    not about limits (``warning: ...``), then one line per kind of limit its runs reached
+    (:class:`railhunt.validity.LimitSummary.line`: the largest value, where, at which
+    speeds, whether it decided anything); with ``verbose`` every detail below them."""
+    summaries = list(getattr(result, "limit_summary", []))
+    texts = {s.text for s in summaries}
+    for warning in getattr(result, "warnings", []):
+        if warning not in texts:
+            console.print(f"[yellow]warning: {warning}[/yellow]")
+    for summary in summaries:
+        console.print(f"[yellow]{summary.line}[/yellow]")
+    if verbose:
+        for line in getattr(result, "details", []):
+            console.print(f"  {line}")

@@ -34,9 +34,11 @@ from railhunt.cli.output import (
     fmt,
     json_safe,
     linear_critical_speed_line,
+    print_warnings,
     stdout_console,
     traced,
     trial_progress,
+    verbose_option,
 )
 from railhunt.cli.rules import Excludes, Ordered, Requires, command
 from railhunt.verdicts import verdict_help
@@ -96,6 +98,7 @@ RULES = (
     is_flag=True,
     help="Print one JSON object (speeds in km/h; unknown values as null) instead of tables.",
 )
+@verbose_option
 @vehicle_options
 def critical_speed_command(
     amplitude: float,
@@ -114,6 +117,7 @@ def critical_speed_command(
     transition: float | None,
     direction: str,
     as_json: bool,
+    verbose: bool,
     vehicle_file: Path | None,
     sets: dict[str, float],
 ) -> None:
@@ -165,7 +169,7 @@ def critical_speed_command(
         report_stochastic_critical_speed(
             vehicle, spectrum=spectrum, seed=seed, track_length=track_length,
             irregularity_file=irregularity_file, start_kmh=start_kmh, step_kmh=step_kmh,
-            tol_kmh=tol_kmh, dt=dt, as_json=as_json,
+            tol_kmh=tol_kmh, dt=dt, as_json=as_json, verbose=verbose,
         )  # fmt: skip
         return
 
@@ -228,34 +232,58 @@ def critical_speed_command(
         )
     console = stdout_console()
     console.print(table)
-    if any(_trial_note(t) == STEADY for t in result.trials):
-        from railhunt.verdicts import STEADY_CYCLE, VERDICTS
-
-        console.print(f"{STEADY}: {VERDICTS[STEADY_CYCLE]} trend at the end: the verdict was "
-                      "taken on the envelope's trend when the 60 s ran out")  # fmt: skip
+    for note in _notes_used(result.trials):
+        console.print(f"{note}: {_note_meaning(note)}")
     console.print(_nonlinear_line(result, tol_kmh))
-    for warning in getattr(result, "warnings", []):
-        console.print(f"[yellow]warning: {warning}[/yellow]")
     console.print(linear_critical_speed_line(linear, curved=curve is not None))
     if _above_linear(result, linear):
         console.print(f"[yellow]note: the nonlinear critical speed lies above the linear one "
                       f"({linear.speed_kmh:.1f} km/h), where centred running is unstable: a "
                       "trial above it can only be stable on a branch of limit cycles, so "
                       "check it with a larger --amplitude or 'railhunt bifurcation'[/yellow]")
+    print_warnings(console, result, verbose)
 
 
 #: The note of a trial judged hunting on a stationary envelope.
 STEADY = "steady cycle"
+#: The note of a trial whose verdict was taken on the envelope's trend at the end.
+TREND = "trend at the end"
+#: The note of an undecided trial (its reason, in words, is in --verbose and the JSON).
+NO_DECAY_NO_CYCLE = "no decay, no cycle"
+
+
+def _note_meaning(note: str) -> str:
+    """What a note of the trial table means (the verdict words' definitions)."""
+    from railhunt.verdicts import STEADY_CYCLE, UNDECIDED, VERDICTS
+
+    return {STEADY: VERDICTS[STEADY_CYCLE],
+            TREND: "the verdict was taken on the envelope's trend when the longest duration "
+                   "(60 s) ran out",
+            NO_DECAY_NO_CYCLE: f"undecided: {VERDICTS[UNDECIDED]}"}[note]  # fmt: skip
+
+
+def _notes_used(trials: list[Any]) -> list[str]:
+    """The notes of the table that need a word of explanation, in the order first used."""
+    out: list[str] = []
+    for trial in trials:
+        note = _trial_note(trial)
+        if note in (STEADY, TREND, NO_DECAY_NO_CYCLE) and note not in out:
+            out.append(note)
+    return out
 
 
 def _trial_note(trial: Any) -> str:
-    """The note column: the solver's status if not ok, else how the verdict was taken."""
-    if trial.verdict in ("derailed", "blow-up", "undecided"):
-        return getattr(trial, "reason", "") or trial.verdict
+    """The note column: the solver's status if not ok, else how the verdict was taken (an
+    undecided trial's reason is in --verbose and the JSON; its size and trend are in the
+    table)."""
+    if trial.verdict == "undecided":
+        return NO_DECAY_NO_CYCLE
+    if trial.verdict in ("derailed", "blow-up"):
+        return "left the track" if trial.verdict == "derailed" else "numerics: smaller dt"
     if trial.status != "ok":
         return trial.status
     if not trial.decided:
-        return "trend at the end"
+        return TREND
     return STEADY if trial.verdict == "hunting" else ""
 
 
@@ -339,6 +367,8 @@ def _critical_json(
         "linear_curving_limit": (None if getattr(linear, "limit", None) is None
                                  else linear.limit.to_dict()),
         "warnings": list(getattr(result, "warnings", [])),
+        "limit_summary": [s.to_dict() for s in getattr(result, "limit_summary", [])],
+        "details": list(getattr(result, "details", [])),
         "limits": [lim.to_dict() for lim in getattr(result, "limits", [])],
         "curving_limit": (None if getattr(result, "limit", None) is None
                           else result.limit.to_dict()),
@@ -361,6 +391,7 @@ def _critical_json(
                 "decided": bool(t.decided),
                 "status": t.status,
                 "reason": getattr(t, "reason", ""),
+                "limits": [lim.to_dict() for lim in getattr(t, "limits", [])],
             }
             for t in result.trials
         ],

@@ -96,11 +96,17 @@ def curve_command(radius: float, cant_mm: float | None, speed: float, transition
         return
     _print_state(state, vehicle, curve)
     if entry is not None:
+        peak = entry["peak_derailment_quotient_w1"]
+        from railhunt.validity import YQ_LIMIT
+
+        star = "*" if peak > YQ_LIMIT else ""
         click.echo(f"png: {png_file} (curve entry from {entry['start_m']:g} m, "
-                   f"{entry['duration_s']:.2f} s: {entry['status']}; peak yaw damper force "
-                   f"{entry['peak_damper_force_N'] * 1e-3:.2f} kN, blow-off force F_u "
+                   f"{entry['duration_s']:.2f} s: solver {entry['status']}; peak yaw damper "
+                   f"force {entry['peak_damper_force_N'] * 1e-3:.2f} kN, blow-off force F_u "
                    f"{vehicle.blowoff_force * 1e-3:g} kN; peak Y/Q of the leading wheelset "
-                   f"{entry['peak_derailment_quotient_w1']:.3f})")  # fmt: skip
+                   f"{peak:.3f}{star})")  # fmt: skip
+        for warning in entry["warnings"]:
+            click.echo(f"warning: curve entry: {warning}")
 
 
 def _balance_kmh(curve: Any, vehicle: Any) -> float:
@@ -134,9 +140,30 @@ def _curve_entry(vehicle: Any, speed: float, curve: Any, png_file: Path) -> dict
     forces = np.abs(np.column_stack([run[f"F_{d}"] for d in run.layout.dampers]
                                     or [np.zeros(run.t.size)]))  # fmt: skip
     yq = np.abs(np.column_stack([run["YQ_w1L"], run["YQ_w1R"]]))
+    peak = float(yq.max())
+    warnings = entry_warnings(curve, peak) + list(run.warnings)
     return {"start_m": curve.start, "transition_m": curve.transition, "duration_s": duration,
             "status": run.status, "peak_damper_force_N": float(forces.max()),
-            "peak_derailment_quotient_w1": float(yq.max()), "png": str(png_file)}  # fmt: skip
+            "peak_derailment_quotient_w1": peak, "warnings": warnings,
+            "png": str(png_file)}  # fmt: skip
+
+
+def entry_warnings(curve: Any, peak_yq: float) -> list[str]:
+    """What a run through a curve entry must be read with beyond its limits: a curve
+    without a transition (its curvature and cant jump: the entry is a kink in the track),
+    and a peak Y/Q beyond Nadal's 0.8 in a single sample (EN 14363 judges the 2 m sliding
+    mean, which the run's limits report)."""
+    from railhunt.validity import YQ_LIMIT
+
+    out = []
+    if curve.transition == 0.0:
+        out.append("--transition 0: the curvature and the cant jump at the curve's start, "
+                   "an entry without a transition (a kink in the track); its forces are an "
+                   "impact no track gives, give a transition of 20 m or more")  # fmt: skip
+    if peak_yq > YQ_LIMIT:
+        out.append(f"peak Y/Q {peak_yq:.3g} beyond {YQ_LIMIT:g} (EN 14363's Nadal limit) in a "
+                   "single sample; EN 14363 judges its 2 m sliding mean")  # fmt: skip
+    return out
 
 
 def _print_state(state: Any, vehicle: Any, curve: Any) -> None:
@@ -209,3 +236,5 @@ def print_run_in_curve(run: Any, vehicle: Any, curve: Any) -> None:
                f"track; peak yaw damper force {forces.max() * 1e-3:.2f} kN (F_u "
                f"{vehicle.blowoff_force * 1e-3:g} kN); peak |Y/Q| {yq[:, k].max():.3f} "
                f"({names[k]})")  # fmt: skip
+    for warning in entry_warnings(curve, float(yq[:, k].max())):
+        click.echo(f"warning:    {warning}")

@@ -71,7 +71,7 @@ RULES = (
     default=None,
     metavar="MM",
     callback=number_range("mm", -20.0, 20.0, low_open=False, optional=True),
-    help="Instead of a track defect, start with all four wheelsets displaced "
+    help="Instead of a track defect, start with every wheelset displaced "
     "laterally by this much (mm) on ideal track, within ±20 mm (a start beyond it is "
     "past the flange, toward the 25 mm derailment limit).",
 )
@@ -135,7 +135,8 @@ def simulate_command(
     motion decays back to the centre line; above it the leading wheelset
     settles on a hunting limit cycle, or it derails (beyond 25 mm); the
     verdict line says which, and tells a numerical blow-up from a
-    derailment. Warnings name every limit of the validity envelope reached.
+    derailment. A 'limit:' line names each limit of the validity envelope the
+    run reached (the largest value, where and when); none changes the verdict.
 
     \b
     With --spectrum NAME (or --irregularity FILE) it runs over an irregular
@@ -151,10 +152,11 @@ def simulate_command(
     displacements are measured from the track at each body's position.
 
     Prints the solver's status (how the integration ended), the verdict on
-    the run (decays or hunting, with the leading wheelset's amplitude in mm,
-    judged after the excitation as the critical-speed search judges a trial)
-    and the peak and final lateral amplitude (mm); --csv and --png save the
-    details (the CSV's metadata in FILE.meta.json).
+    the run (stable, hunting, undecided, derailed or blow-up, the words
+    below; with the leading wheelset's amplitude in mm, judged after the
+    excitation as the critical-speed search judges a trial) and the peak and
+    final lateral amplitude (mm); --csv and --png save the details (the CSV's
+    metadata in FILE.meta.json).
     """
     check_outputs(overwrite=overwrite, csv=csv_file, png=png_file)
     tracks = (("--spectrum", spectrum), ("--irregularity", irregularity_file))
@@ -167,7 +169,9 @@ def simulate_command(
 
     if initial_displacement is not None:
         with user_input():
-            excitation: Any = InitialDisplacement(amplitude=initial_displacement * 1e-3)
+            excitation: Any = InitialDisplacement(
+                amplitude=initial_displacement * 1e-3,
+                wheelsets=tuple(range(1, len(vehicle.layout.wheelsets) + 1)))
         described = f"all wheelsets displaced by {initial_displacement:g} mm"
     elif irregular:
         from railhunt import track_irregularity
@@ -223,8 +227,12 @@ def simulate_command(
         print_run_in_curve(result, vehicle, curve)
     if irregular:
         _print_criterion(result, vehicle)
-    for warning in result.warnings:
-        click.echo(f"warning:    {warning}")
+    limits = {lim.text for lim in result.limits}
+    for warning in result.warnings:  # a blow-up; the limits below
+        if warning not in limits:
+            click.echo(f"warning:    {warning}")
+    for lim in result.limits:
+        click.echo(f"limit:      {lim.text}: changes no verdict")
     if csv_file is not None:
         with user_input("cannot write --csv: "):
             result.to_csv(csv_file)

@@ -20,6 +20,7 @@ from railhunt.cli.output import (
     announce,
     json_safe,
     linear_critical_speed_line,
+    print_warnings,
     stdout_console,
     traced,
     trial_progress,
@@ -37,6 +38,7 @@ def report_stochastic_critical_speed(
     tol_kmh: float,
     dt: float | None,
     as_json: bool,
+    verbose: bool = False,
 ) -> None:
     """Run the stochastic critical-speed search and report it (table or JSON).
 
@@ -55,6 +57,8 @@ def report_stochastic_critical_speed(
         Time step of the rk4 integrator (s); None: chosen from the model.
     as_json : bool
         Print one JSON object instead of the table.
+    verbose : bool
+        ``--verbose``: every limit of every run, one line each, below the summaries.
     """
     from railhunt import linear_critical_speed, stochastic_critical_speed, track_irregularity
     from railhunt.analysis.stochastic import acceleration_limit, bogie_mass, sum_y_limit
@@ -89,6 +93,8 @@ def report_stochastic_critical_speed(
             "bracketed": bool(result.bracketed),
             "tol_kmh": tol_kmh,
             "warnings": result.warnings,
+            "limit_summary": [s.to_dict() for s in result.limit_summary],
+            "details": result.details,
             "limits": [lim.to_dict() for lim in result.limits],
             "vehicle": vehicle.name,
             "irregularity": {
@@ -162,9 +168,8 @@ def report_stochastic_critical_speed(
         why = ("every trial speed up to 800 km/h met the criterion" if verdicts == {"stable"}
                else "every trial speed down to 20 km/h broke the criterion")  # fmt: skip
         console.print(f"stochastic critical speed: not found ({why})")
-    for warning in result.warnings:
-        console.print(f"[yellow]warning: {warning}[/yellow]")
     console.print(linear_critical_speed_line(linear))
+    print_warnings(console, result, verbose)
 
 
 def _announce_runs(vehicle: Any, length: float, start_kmh: float, step_kmh: float,
