@@ -88,7 +88,7 @@ def test_optimize_json_png(tmp_path):
 
 
 @pytest.mark.parametrize(("args", "fragments"), [
-    (["--objective", "max critical_speed_kmh"], ["at least two --objective"]),
+    (["--objective", "max critical_speed_kmh"], ["--objective is needed at least twice"]),
     (["--objective", "max critical_speed_kmh", "--objective", "least wear_number"],
      ["least wear_number", "max COLUMN"]),
     (["--objective", "max critical_speed_kmh", "--objective", "min wear_number",

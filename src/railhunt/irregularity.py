@@ -287,6 +287,11 @@ def track_irregularity(
             raise ValueError(
                 f"{name} = {value!r} is invalid: must be finite and in [{low:g}, {high:g}]"
             )
+    if not (seed is None or isinstance(seed, np.random.Generator)
+            or (isinstance(seed, int | np.integer) and not isinstance(seed, bool)
+                and seed >= 0)):  # fmt: skip
+        raise ValueError(f"seed = {seed!r} is invalid: must be an integer >= 0, a "
+                         "numpy.random.Generator or None")  # fmt: skip
     n = int(round(length / dx)) + 1
     n_fft = n - 1  # the record is one period of the FFT grid, plus its closing sample
     d_omega = 2.0 * math.pi / (n_fft * dx)

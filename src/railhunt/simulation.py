@@ -18,7 +18,13 @@ from railhunt.kernel import integrators
 from railhunt.kernel.layout import LAYOUT, N_DAMPER, N_STATE, DamperParam, StateLayout
 from railhunt.model import Model
 from railhunt.results import Columns, ResultDisplay, Row
-from railhunt.track import InitialDisplacement, SampledTrack, SingleDefect, check_excitation
+from railhunt.track import (
+    DEFAULT_DISPLACED,
+    InitialDisplacement,
+    SampledTrack,
+    SingleDefect,
+    check_excitation,
+)
 from railhunt.units import kmh_to_ms, ms_to_kmh
 from railhunt.vehicle import Vehicle
 
@@ -187,6 +193,11 @@ def _initial_state(model: Model, excitation: object, x0: np.ndarray | None) -> n
         raise ValueError(f"x0 has shape {x.shape}: must be ({n},)")
     if isinstance(excitation, InitialDisplacement):
         ys = model.layout.wheelset_y
+        missing = [w for w in excitation.wheelsets if w > len(ys)]
+        if missing and tuple(excitation.wheelsets) != DEFAULT_DISPLACED:
+            raise ValueError(f"InitialDisplacement(wheelsets={tuple(excitation.wheelsets)!r}): "
+                             f"wheelset {missing[0]} is not one of the vehicle's {len(ys)} "
+                             f"wheelsets (numbered 1 to {len(ys)} from the front)")  # fmt: skip
         for w in excitation.wheelsets:
             if w <= len(ys):
                 x[ys[w - 1]] += excitation.amplitude
@@ -259,21 +270,60 @@ def step_cause(model: Model, speed: float, dt_max: float = 1e-3) -> str:
     fastest mode, or the step's cap of ``dt_max`` s."""
     rate = float(np.max(np.abs(model.centred_eigenvalues(speed))))
     d = model.dpar
-    k_d = float(np.max(d[:, DamperParam.K_D]))
-    c_1 = float(np.min(d[:, DamperParam.C_D1]))
-    c_2 = float(np.min(d[:, DamperParam.C_D2]))
-    rate_1, rate_2 = k_d / c_1, k_d / c_2
+    if d.shape[0]:
+        k_d = float(np.max(d[:, DamperParam.K_D]))
+        c_1 = float(np.min(d[:, DamperParam.C_D1]))
+        c_2 = float(np.min(d[:, DamperParam.C_D2]))
+        rate_1, rate_2 = k_d / c_1, k_d / c_2
+    else:  # no yaw damper (the Cooperrider bogie)
+        k_d = c_1 = c_2 = rate_1 = rate_2 = 0.0
     top = max(rate, rate_1, rate_2)
     if 0.6 / top >= dt_max:
         return f"the step is its cap of {dt_max:g} s: the run is long, not stiff"
     if max(rate_1, rate_2) < 0.5 * rate:  # the damper's relaxation is one of the modes
         return (f"the step of {0.6 / top:.2g} s is set by the model's fastest mode "
-                f"({rate:.3g} 1/s, the Jacobian's largest eigenvalue: a stiff spring or a "
-                "light body)")  # fmt: skip
+                f"({rate:.3g} 1/s, the Jacobian's largest eigenvalue): "
+                f"{_fastest_mode_body(model, speed)}")  # fmt: skip
     name, c = ("C_d1", c_1) if rate_1 >= rate_2 else ("C_d2", c_2)
     return (f"the step of {0.6 / top:.2g} s is set by the yaw damper's relaxation K_d/{name} "
             f"= {k_d:.4g} N/m / {c:.4g} N*s/m = {top:.3g} 1/s; a larger {name} or a smaller "
             "K_d shortens the run")
+
+
+#: The inertia that resists each kind of coordinate, as a body's layout entry names it.
+_INERTIA = {"y": ("mass", "kg"), "psi": ("yaw_inertia", "kg*m^2"),
+            "phi": ("roll_inertia", "kg*m^2")}
+
+
+def _fastest_mode_body(model: Model, speed: float) -> str:
+    """The coordinate that moves most in the model's fastest mode and the inertia of its
+    body, naming the parameters it is written with: the light body (or stiff spring) that
+    forces a small step."""
+    lam, vec = np.linalg.eig(model.jacobian(speed))
+    k = int(np.argmax(np.abs(lam)))
+    n_dof = model.layout.n_dof
+    shape = np.abs(vec[:, k])
+    # the rates of a mode are |lambda| times its displacements: compare like with like
+    moves = shape[:n_dof] * abs(lam[k]) + shape[n_dof:2 * n_dof]
+    coordinate = model.layout.dof_names[int(np.argmax(moves))]
+    kind, tag = coordinate.split("_", 1)
+    body = next(b for b in model.layout.bodies if b.tag == tag)
+    field, unit = _INERTIA.get(kind, ("mass", "kg"))
+    what = f"{coordinate} of {body.name} moves most in it"
+    try:
+        expression = getattr(model.vehicle.layout.body(body.name), field)
+    except (AttributeError, KeyError, ValueError):
+        expression = None
+    if expression is None:
+        return f"{what} (a stiff spring or a light body)"
+    values = model.vehicle.as_dict()
+    value = expression(values)
+    said = f"{field.replace('_', ' ')} {expression.source} = {value:.4g} {unit}"
+    if str(expression.source) not in values:  # an expression: the values it is made of
+        said += " (" + ", ".join(f"{n} = {values[n]:.4g}" for n in sorted(expression.names)
+                                 if n in values) + ")"  # fmt: skip
+    return (f"{what}, and its {said} is light for the springs on it (or a spring on it is "
+            "stiff)")  # fmt: skip
 
 
 def stiff_damper_message(model: Model, rest: float, dt: float, rate_1: float, rate_2: float,

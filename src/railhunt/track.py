@@ -62,6 +62,10 @@ class SingleDefect:
         return self.start + self.wavelength
 
 
+#: The wheelsets :class:`InitialDisplacement` displaces by default (1 = leading).
+DEFAULT_DISPLACED = (1, 2, 3, 4)
+
+
 @dataclass(frozen=True)
 class InitialDisplacement:
     """Start from a laterally displaced wheelset on ideal track.
@@ -71,13 +75,13 @@ class InitialDisplacement:
     amplitude : float
         Initial lateral displacement (m), within ±0.02 m.
     wheelsets : tuple of int
-        Which wheelsets (1 = leading) are displaced; all four by default. A vehicle with
-        fewer wheelsets ignores the numbers it does not have (so the default displaces
-        all of them); one with more displaces only those listed.
+        Which wheelsets (1 = leading) are displaced; by default the first four
+        (:data:`DEFAULT_DISPLACED`), which on a vehicle with fewer is all of them. Any other
+        number the vehicle does not have is an error when the run starts.
     """
 
     amplitude: float = 0.003
-    wheelsets: tuple[int, ...] = (1, 2, 3, 4)
+    wheelsets: tuple[int, ...] = DEFAULT_DISPLACED
 
     def __post_init__(self) -> None:
         # A start beyond 20 mm is past the flange, next to the 25 mm derailment limit.

@@ -1,4 +1,5 @@
-"""The ``railhunt`` command group: ``--version``, the help listing every command, errors.
+"""The ``railhunt`` command group: ``--version``, the help listing every command, errors
+and warnings (one line each: :func:`railhunt.cli.errors.one_line_warnings`).
 
 The interface converts units at its edge (defect amplitudes in mm, speeds in km/h) and
 calls the Python API in SI units. Every input error ends the program with one line on
@@ -13,7 +14,14 @@ from typing import Any
 import click
 
 from railhunt.cli.commands import COMMANDS
-from railhunt.cli.errors import DEBUG_ENV, DEBUG_KEY, PROG, no_tracebacks, one_line_usage_errors
+from railhunt.cli.errors import (
+    DEBUG_ENV,
+    DEBUG_KEY,
+    PROG,
+    no_tracebacks,
+    one_line_usage_errors,
+    one_line_warnings,
+)
 
 __all__ = ["main"]
 
@@ -77,11 +85,11 @@ class Group(click.Group):
         parent: click.Context | None = None,
         **extra: Any,
     ) -> click.Context:
-        with one_line_usage_errors():
+        with one_line_usage_errors(), one_line_warnings():
             return super().make_context(info_name, args, parent, **extra)
 
     def invoke(self, ctx: click.Context) -> Any:
-        with no_tracebacks(ctx), one_line_usage_errors():
+        with no_tracebacks(ctx), one_line_usage_errors(), one_line_warnings():
             return super().invoke(ctx)
 
     def list_commands(self, ctx: click.Context) -> list[str]:

@@ -14,7 +14,7 @@ from typing import Any
 import click
 
 __all__ = ["DEBUG_ENV", "PROG", "CliError", "flag_names", "no_tracebacks", "one_line_usage_errors",
-           "user_input"]
+           "one_line_warnings", "user_input"]
 
 #: Name of the program in messages and usage lines.
 PROG = "railhunt"
@@ -129,6 +129,29 @@ def no_tracebacks(ctx: click.Context | None = None) -> Iterator[None]:
                    f"with {DEBUG_ENV}=1 or 'railhunt --debug ...' to see where; please "
                    "report it)", err=True)  # fmt: skip
         raise SystemExit(1) from None
+
+
+@contextlib.contextmanager
+def one_line_warnings() -> Iterator[None]:
+    """Python warnings raised while a command runs (a measuring spike in a profile, a free
+    wheelset, a warning of a library railhunt uses) are printed as one ``warning: ...``
+    line each on stderr: the message on one line, never the source file and line Python's
+    own format shows, and a message repeated by a loop only once. The warning filters
+    stay as they are (``PYTHONWARNINGS=error`` still turns a warning into an error)."""
+    import warnings
+
+    seen: set[str] = set()
+
+    def show(message: Warning | str, category: type[Warning], filename: str, lineno: int,
+             file: Any = None, line: str | None = None) -> None:  # fmt: skip
+        text = " ".join(str(message).split()) or category.__name__
+        if text not in seen:
+            seen.add(text)
+            click.echo(f"warning: {text}", err=True)
+
+    with warnings.catch_warnings():
+        warnings.showwarning = show
+        yield
 
 
 @contextlib.contextmanager

@@ -64,6 +64,8 @@ __all__ = [
     "single_defect",
     "speed_count",
     "transition_option",
+    "VehicleOption",
+    "vehicle_help",
     "vehicle_options",
     "write_sidecar",
 ]
@@ -169,7 +171,7 @@ def _parse_set(
         name, text = name.strip(), text.strip()
         if not sep or not name or not text:
             raise click.BadParameter(
-                f"{item!r} is not of the form NAME=VALUE (SI units), e.g. --set C_d1=150e3"
+                f"{item!r} is not of the form NAME=VALUE (SI units), e.g. C_d1=150e3"
             )
         try:
             value = float(text)
@@ -229,15 +231,32 @@ def vehicle_options(func: Callable[..., Any]) -> Callable[..., Any]:
     func = click.option(
         "--vehicle",
         "vehicle_file",
+        cls=VehicleOption,
         metavar="FILE|NAME",
         is_eager=True,
         callback=_vehicle_source,
-        help="Vehicle TOML file (SI units), or the name of a vehicle shipped with railhunt: "
-        "paper2019; s1002_uic60 (the paper's vehicle with S1002 wheels on UIC60 rails 1:40, "
-        "fitted polynomials); s1002_uic60_table (the same with the contact geometry "
-        "tabulated from the profiles). Default: paper2019.",
     )(func)
     return func
+
+
+def vehicle_help() -> str:
+    """The help of ``--vehicle``: every vehicle shipped in railhunt's data directory, by
+    name (read when the help is shown, so that a vehicle added to the directory is listed
+    by every command)."""
+    from railhunt.vehicle import shipped_vehicles
+
+    return ("Vehicle TOML file (SI units), or the name of a vehicle shipped with railhunt: "
+            f"{', '.join(shipped_vehicles())} ('railhunt vehicles' describes each, 'railhunt "
+            "parameters --vehicle NAME' lists its parameters). Default: paper2019.")
+
+
+class VehicleOption(click.Option):
+    """``--vehicle``, whose help lists the shipped vehicles (:func:`vehicle_help`), read
+    from the data directory when the help is shown, not when the command line starts."""
+
+    def get_help_record(self, ctx: click.Context) -> tuple[str, str] | None:
+        self.help = vehicle_help()
+        return super().get_help_record(ctx)
 
 
 def build_vehicle(vehicle_file: Path | str | None, sets: dict[str, float]) -> Vehicle:

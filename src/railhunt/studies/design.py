@@ -131,7 +131,12 @@ def _check_values(name: str, values: object,
                   specs: Mapping[str, ParameterSpec] = PARAMETERS) -> np.ndarray:  # fmt: skip
     if name not in specs:
         raise UnknownParameterError(name, values, known=tuple(specs))
-    arr = np.atleast_1d(np.asarray(values, dtype=float))
+    try:
+        arr = np.atleast_1d(np.asarray(values, dtype=float))
+    except (TypeError, ValueError):
+        unit = f" in {specs[name].unit}" if specs[name].unit else ""
+        raise ValueError(f"{name} = {values!r} is invalid: the values of a sweep are numbers"
+                         f"{unit} (SI), e.g. {name} = [1.5e5, 3e5]") from None  # fmt: skip
     if arr.ndim != 1 or arr.size == 0:
         raise ValueError(f"{name}: the values must be a non-empty 1-D sequence, got {values!r}")
     for v in arr:

@@ -163,6 +163,15 @@ def function_task(item: tuple[int, dict[str, float]], function: Callable[..., Ma
     status, message = STATUS_OK, ""
     try:
         result = function(**values)
+        if not isinstance(result, Mapping):
+            raise TypeError(f"the model function {function_name(function)} returned "
+                            f"{result!r} ({type(result).__name__}), not a mapping of the "
+                            f"outputs to their values, e.g. "
+                            f"{ {o: 1.0 for o in outputs}!r}")  # fmt: skip
+        missing = [o for o in outputs if o not in result]
+        if missing:
+            raise ValueError(f"the model function {function_name(function)} returned no "
+                           f"{missing[0]!r} (it returned {', '.join(map(repr, result))})")
         for o in outputs:
             row[o] = float(result[o])
     except Exception as exc:  # noqa: BLE001 - one bad point must not end a study

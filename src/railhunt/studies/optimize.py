@@ -163,6 +163,13 @@ def optimize(
     if len(objs) < 2:
         raise ValueError(f"objectives = {list(objectives)!r}: give at least two (a front of "
                          "one objective is a single point)")  # fmt: skip
+    seen: dict[str, str] = {}
+    for text, (_, column) in zip(objectives, objs, strict=True):
+        if column in seen:
+            raise ValueError(f"objective {text!r} is about {column}, as {seen[column]!r} is: "
+                             "each objective needs its own column (a front of one column "
+                             "against itself is a single point or every design)")  # fmt: skip
+        seen[column] = text
     for name, value, low in (("population", population, 4), ("generations", generations, 1)):
         if isinstance(value, bool) or int(value) != value or not low <= value <= 100000:
             raise ValueError(f"{name} = {value!r} is invalid: must be an integer in "

@@ -115,7 +115,9 @@ def _run(points: Sequence[tuple[int, Any]], task: Callable[[Any], dict[str, Any]
     try:
         lost = run_tasks(task, todo, on_result, client=client, workers=workers,
                          warm_up=warm_up if todo else None)  # fmt: skip
-        complete = len(rows) == total
+        # every point of this design is in (the file may hold others: an optimisation's
+        # earlier generations), so the file is rewritten sorted by point
+        complete = all(index in rows for index, _ in points)
     finally:
         if bar is not None:
             bar.stop()

@@ -290,8 +290,15 @@ def analyse_study(study: SweepResults, method: str, factors: Sequence[Factor], x
     total = x.shape[0]
     for column in outputs:
         y, capped[column] = output_values(study.rows, column, total)
-        indices, dropped[column] = analyse(method, factors, x, y, seed, num_resamples,
-                                           conf_level)  # fmt: skip
+        try:
+            indices, dropped[column] = analyse(method, factors, x, y, seed, num_resamples,
+                                               conf_level)  # fmt: skip
+        except ValueError as exc:
+            failed = next((r for r in study.rows if r.get("status") == "failed"), None)
+            if failed is None:
+                raise
+            raise ValueError(f"{exc} (point {failed['point']} failed: "
+                             f"{failed.get('message', '')})") from None  # fmt: skip
         finite = y[np.isfinite(y)]
         if finite.size and np.ptp(finite) == 0:
             notes.append(f"{column} is the same at every point: it has no indices (NaN)")

@@ -222,7 +222,7 @@ def load_vehicle(path: str | os.PathLike[str]) -> Vehicle:
     """
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        text = path.read_text(encoding="utf-8-sig")  # a byte-order mark is skipped
     except UnicodeDecodeError as exc:
         raise VehicleFileError(f"{path}: not a UTF-8 text file") from exc
     return _vehicle_from_data(_parse_toml(text, str(path)), str(path), default_name=path.stem)

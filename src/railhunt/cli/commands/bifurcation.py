@@ -77,8 +77,8 @@ def _parse_forces(ctx: click.Context, param: click.Parameter,
 @click.option("--wheelset", "wheelset", type=click.Choice(["leading", "largest"]),
               default="leading", show_default=True,
               help="Amplitude drawn in --png and --family-png: the leading wheelset's (the "
-              "paper's) or the largest of the four wheelsets' (shows a cycle on which mainly "
-              "the rear bogie hunts at its real size).")
+              "paper's) or the largest of all the wheelsets' (shows a cycle on which another "
+              "wheelset hunts most, such as the paper's car's rear bogie, at its real size).")
 @curve_options("Length of the transition curves of --curve-radius (m), recorded in the JSON; "
                "the limit cycles are those of the constant curve and do not depend on it "
                "[default: R/10, within 20-300 m].")

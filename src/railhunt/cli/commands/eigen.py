@@ -49,11 +49,12 @@ def eigen_command(
 
     \b
     Linearises the model about the centred equilibrium on ideal track and
-    computes its 38 eigenvalues at each speed. The hunting mode is the least
-    damped oscillation dominated by wheelset lateral/yaw motion; its frequency
-    (Hz) rises with speed and its damping ratio falls. Where the damping ratio
-    crosses zero is the linear critical speed (Hopf point): above it even a
-    tiny disturbance grows. Prints a table of hunting frequency (Hz) and
+    computes its eigenvalues at each speed (two per coordinate and one per
+    yaw damper force; 'railhunt vehicle NAME' counts them). The hunting mode
+    is the least damped oscillation dominated by wheelset lateral/yaw motion;
+    its frequency (Hz) rises with speed and its damping ratio falls. Where the
+    damping ratio crosses zero is the linear critical speed (Hopf point):
+    above it even a tiny disturbance grows. Prints a table of hunting frequency (Hz) and
     damping ratio (%) vs speed (km/h) and the linear critical speed.
     """
     check_outputs(overwrite=overwrite, csv=csv_file, png=png_file, mode_png=mode_png_file)

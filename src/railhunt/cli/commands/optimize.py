@@ -85,8 +85,8 @@ def optimize_command(ctx, names, froms, tos, tolerances, objectives, constraints
 
     check_workers_option(workers)
     if len(objectives) < 2:
-        raise CliError("give at least two --objective, e.g. --objective 'max critical_speed_kmh'"
-                       " --objective 'min wear_number'")  # fmt: skip
+        raise CliError("--objective is needed at least twice (one column each), e.g. 'max "
+                       "critical_speed_kmh' and 'min wear_number'")  # fmt: skip
     with running_study(out):
         cols = [parse_objective(o)[1] for o in objectives]
         cols += [parse_constraint(c)[0] for c in constraints]

@@ -89,7 +89,7 @@ def _parse_ties(ctx: click.Context, param: click.Parameter,
         follower, leader = follower.strip(), leader.strip()
         if not sep or not follower or not leader or not math.isfinite(factor):
             raise click.BadParameter(f"{item!r} is not of the form FOLLOWER=LEADER or "
-                                     "FOLLOWER=FACTOR*LEADER, e.g. --tie f22=f11")  # fmt: skip
+                                     "FOLLOWER=FACTOR*LEADER, e.g. f22=f11")  # fmt: skip
         for name in (follower, leader):
             _known_parameter(item, name)
         out[follower] = (leader, factor)
