@@ -74,6 +74,6 @@ if __name__ == "__main__":
     import sys
 
     sys.path.insert(0, str(Path(__file__).parent))
-    from run import Row, print_table
+    from table import Row, print_table
 
     print_table(global_study_rows(2, "--quick" in sys.argv, Row))

@@ -15,12 +15,10 @@ from __future__ import annotations
 
 import argparse
 import math
-import statistics
 import subprocess
 import sys
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -44,6 +42,10 @@ from railhunt.model import Model
 from railhunt.simulation import auto_step, default_atol
 from railhunt.units import kmh_to_ms
 
+# The table of rows (Row, timing, printing) has its own module, which the global
+# studies' rows use too; its names are importable from here as before.
+from table import Row, fmt_time, median_time, print_table  # noqa: E402, F401
+
 SPEED_KMH = 350.0
 DURATION = 10.0
 Y_AGREEMENT = 1e-6  # m: baseline vs railhunt DOPRI5, final y_w1
@@ -57,41 +59,6 @@ COLD_SNIPPET = (
     "import time; t=time.time(); import railhunt; v=railhunt.Vehicle.paper2019(); "
     "railhunt.simulate(v, 300, duration=1.0); print(time.time()-t)"
 )
-
-
-@dataclass
-class Row:
-    case: str
-    seconds: float
-    target: float | None = None  # seconds; None: no target
-    note: str = ""
-
-    @property
-    def verdict(self) -> str:
-        if self.target is None:
-            return "-"
-        if not math.isfinite(self.seconds):
-            return "FAIL"
-        return "pass" if self.seconds <= self.target else "FAIL"
-
-
-def median_time(fn: Callable[[], object], repeat: int) -> tuple[float, object]:
-    """Median wall time (s) of ``fn`` over ``repeat`` calls after one warm-up call."""
-    result = fn()  # warm-up: JIT compilation or cache load
-    times = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        result = fn()
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times), result
-
-
-def fmt_time(seconds: float) -> str:
-    if not math.isfinite(seconds):
-        return "n/a"
-    if seconds < 1.0:
-        return f"{seconds * 1e3:.1f} ms"
-    return f"{seconds:.2f} s"
 
 
 # --------------------------------------------------------------------------------------
@@ -241,48 +208,6 @@ def curve_rows(vehicle: railhunt.Vehicle, repeat: int) -> tuple[list[Row], str]:
                f"{nlw.speed_kmh:.0f} km/h ({len(nlw.trials)} trials); stability map "
                f"(nonlinear/linear km/h) {found}")  # fmt: skip
     return rows, summary
-
-
-def print_table(rows: list[Row]) -> None:
-    headers = ("case", "time (median)", "target", "pass/fail")
-    cells = [
-        (
-            r.case,
-            fmt_time(r.seconds),
-            "-" if r.target is None else f"<= {fmt_time(r.target)}",
-            r.verdict,
-        )
-        for r in rows
-    ]
-    if sys.stdout.isatty():
-        try:
-            from rich.console import Console
-            from rich.table import Table
-        except ImportError:
-            pass
-        else:
-            table = Table(title="railhunt benchmarks")
-            for h in headers:
-                table.add_column(h, justify="left" if h == "case" else "right")
-            for c in cells:
-                style = "red" if c[3] == "FAIL" else None
-                table.add_row(*c, style=style)
-            Console().print(table)
-            return
-    widths = [max(len(h), *(len(c[i]) for c in cells)) for i, h in enumerate(headers)]
-    line = "  ".join(
-        h.ljust(w) if i == 0 else h.rjust(w)
-        for i, (h, w) in enumerate(zip(headers, widths, strict=True))
-    )
-    print(line)
-    print("-" * len(line))
-    for c in cells:
-        print(
-            "  ".join(
-                s.ljust(w) if i == 0 else s.rjust(w)
-                for i, (s, w) in enumerate(zip(c, widths, strict=True))
-            )
-        )
 
 
 def main(argv: list[str] | None = None) -> int:
