@@ -31,10 +31,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from railhunt.analysis.branch_tracer import BranchLimits, BranchTracer
 from railhunt.analysis.branches import make_branch
 from railhunt.analysis.continuation import (
-    BranchLimits,
-    BranchTracer,
     hopf_branch_start,
     hopf_mode_shape,
     measure_coordinate,

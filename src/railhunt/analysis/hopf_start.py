@@ -22,7 +22,7 @@ from railhunt.model import Model
 from railhunt.units import kmh_to_ms
 
 if TYPE_CHECKING:
-    from railhunt.analysis.continuation import BranchTracer
+    from railhunt.analysis.branch_tracer import BranchTracer
 
 
 def hopf_mode_shape(model: Model, hopf_kmh: float,
