@@ -89,7 +89,7 @@ class UnknownParameterError(ParameterError):
 
     def __init__(self, parameter: str, value: object = None,
                  known: tuple[str, ...] | None = None) -> None:  # fmt: skip
-        from railhunt.vehicle.parameters import DERIVED, PARAMETERS, suggest
+        from railhunt.vehicle.table import DERIVED, PARAMETERS, suggest
 
         suggestions = suggest(parameter, known)
         if parameter in DERIVED:  # a derived quantity is known, just not settable
@@ -139,7 +139,7 @@ class DerivedParameterError(ParameterError):
     """An attempt to set a derived quantity (``v_u`` or ``N``) directly."""
 
     def __init__(self, parameter: str, value: object = None) -> None:
-        from railhunt.vehicle.parameters import DERIVED
+        from railhunt.vehicle.table import DERIVED
 
         spec = DERIVED[parameter]
         message = (
