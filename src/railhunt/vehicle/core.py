@@ -19,9 +19,21 @@ if TYPE_CHECKING:
     from railhunt.layout.assembly import Assembly
     from railhunt.layout.spec import LayoutSpec
 
-__all__ = ["Vehicle"]
+__all__ = ["Vehicle", "set_file_readers"]
 
 _IDENTITY = ("name", "description", "contact", "layout", "values")
+
+#: How vehicle files are read: :mod:`railhunt.vehicle.files` builds vehicles from files, so
+#: it sits above this module, and hands its readers over when it is imported (the package
+#: imports it): ``paper_layout`` (the default layout of ``Vehicle()``), ``load_shipped``
+#: (:meth:`Vehicle.shipped`) and ``load_vehicle`` (:meth:`Vehicle.from_toml`).
+_READERS: dict[str, Any] = {}
+
+
+def set_file_readers(**readers: Any) -> None:
+    """Hand this module the readers of vehicle files (``paper_layout``, ``load_shipped``,
+    ``load_vehicle``): called once, by :mod:`railhunt.vehicle.files`."""
+    _READERS.update(readers)
 
 
 @dataclass(frozen=True, init=False, repr=False, eq=False)
@@ -72,9 +84,7 @@ class Vehicle:
             raise ValueError(f"vehicle contact must be a ContactSpec or None, got "
                              f"{contact!r}")  # fmt: skip
         if layout is None:
-            from railhunt.vehicle.files import paper_layout
-
-            layout = paper_layout()
+            layout = _READERS["paper_layout"]()
         given = {**(values or {}), **parameters}
         specs = layout.specs
         if values is None:
@@ -137,9 +147,7 @@ class Vehicle:
         -------
         Vehicle
         """
-        from railhunt.vehicle.files import load_shipped
-
-        vehicle = load_shipped(name)
+        vehicle = _READERS["load_shipped"](name)
         if type(vehicle) is not cls:  # subclass: rebuild as that class
             return cls(name=vehicle.name, description=vehicle.description,
                        contact=vehicle.contact, layout=vehicle.layout,
@@ -149,9 +157,7 @@ class Vehicle:
     @classmethod
     def from_toml(cls, path: str | os.PathLike[str]) -> "Vehicle":
         """Read a vehicle or layout file (:func:`railhunt.vehicle.load_vehicle`)."""
-        from railhunt.vehicle.files import load_vehicle
-
-        return load_vehicle(path)
+        return _READERS["load_vehicle"](path)
 
     load = from_toml
 

@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from railhunt.vehicle.contact import ContactSpec
-from railhunt.vehicle.core import Vehicle
+from railhunt.vehicle.core import Vehicle, set_file_readers
 from railhunt.vehicle.errors import (
     MissingParametersError,
     ParameterError,
@@ -426,3 +426,8 @@ def _read_entry(name: str, entry: object, unit: str, meaning: str) -> float:
             )
         entry = entry["value"]
     return as_float(name, entry, unit, meaning)
+
+
+# The readers Vehicle() and its constructors use (railhunt.vehicle.core imports nothing
+# from this module, which builds on it).
+set_file_readers(paper_layout=paper_layout, load_shipped=load_shipped, load_vehicle=load_vehicle)
