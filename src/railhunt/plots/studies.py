@@ -23,7 +23,7 @@ _SECTION_COLOURS = ("#1f4e79", "#5b9bd5", "#bdd7ee")
 
 def _display_unit(name: str) -> tuple[str, float, str]:
     """Axis label, SI size of the display unit and tick-label name of a swept parameter."""
-    from railhunt.studies.sections import load_table1
+    from railhunt.paper2019.table1 import load_table1
     from railhunt.vehicle import PARAMETERS
 
     entry = load_table1().get(name)
