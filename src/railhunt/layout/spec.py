@@ -167,6 +167,17 @@ class LayoutSpec:
         Where each parameter's value comes from.
     citation : str
         Where the vehicle comes from (``[vehicle] source``: one line).
+    formulas : tuple of (str, str)
+        The derived parameters and their expressions of other parameters, as the file
+        writes them (``("f11", "GPIAB / phi_vj")``): each follows its inputs wherever they
+        change (``replace``, ``--set``, sweeps, studies).
+    allowed : frozenset of str
+        The parameters whose file says ``allow = true``: they (and every value computed
+        from them) may lie outside the ranges their uses make plausible
+        (:mod:`railhunt.quantities.meanings`); the rules of sign still hold.
+    inferred : frozenset of str
+        The parameters whose rule is the rule of their use in the layout (their file states
+        none): a file written from the layout leaves it out, as its source did.
     """
 
     bodies: tuple[BodySpec, ...]
@@ -178,6 +189,16 @@ class LayoutSpec:
     parameters: tuple[ParameterSpec, ...] = ()
     sources: tuple[tuple[str, str], ...] = field(default=(), compare=False)
     citation: str = field(default="", compare=False)
+    formulas: tuple[tuple[str, str], ...] = ()
+    allowed: frozenset[str] = frozenset()
+    inferred: frozenset[str] = frozenset()
+
+    def formula(self, name: str) -> str | None:
+        """The expression a derived parameter is computed from (None: an independent one)."""
+        for n, text in self.formulas:
+            if n == name:
+                return text
+        return None
 
     @property
     def specs(self) -> dict[str, ParameterSpec]:

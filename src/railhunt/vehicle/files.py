@@ -46,7 +46,7 @@ _TABLE_KEYS = frozenset({"value", "unit", "meaning", "source"})
 # A layout file's parameter tables also state the rule (read by railhunt.layout.params;
 # a file of the paper's parameters may carry them: the paper's own rules apply).
 _RULE_KEYS = frozenset({"rule", "min", "max", "above", "below", "reason", "default",
-                        "greater_than"})  # fmt: skip
+                        "greater_than", "allow"})  # fmt: skip
 _VEHICLE_KEYS = frozenset({"name", "description", "base", "gravity", "source"})
 _LAYOUT_SECTIONS = frozenset({"body", "element", "wheel_rail"})
 _CONTACT_KEYS = frozenset({"wheel", "rail", "rail_inclination", "gauge", "back_to_back",
@@ -108,7 +108,12 @@ def _layout_from_data(data: dict[str, Any], where: str) -> tuple["LayoutSpec", d
                           "taken by the vehicle's own attributes: rename them")  # fmt: skip
     layout = dataclasses.replace(layout, consistency=table.consistency,
                                  parameters=tuple(table.specs.values()),
-                                 sources=tuple(table.sources.items()))  # fmt: skip
+                                 sources=tuple(table.sources.items()),
+                                 formulas=table.formulas, allowed=table.allowed)  # fmt: skip
+    # Each parameter gets the rule and unit of its use (unless its file states its rule).
+    from railhunt.layout.checks import infer_parameters
+
+    layout = infer_parameters(layout, table.stated)
     return layout, table.values
 
 

@@ -14,29 +14,31 @@ value in each shipped vehicle file (``railhunt/data/vehicles/*.toml``). Give it 
 """
 
 import difflib
-import math
 import numbers
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
 
+from railhunt.quantities.formatting import fmt_value
+from railhunt.quantities.rules import (
+    CONTACT_ANGLE,
+    CONTACT_HALF_DISTANCE,
+    FINITE,
+    FRICTION,
+    NONNEGATIVE,
+    POSITIVE,
+    ROLLING_RADIUS,
+    DerivedSpec,
+    ParameterSpec,
+    parameter,
+    parameter_specs,
+)
 from railhunt.vehicle.contact import ContactSpec
 from railhunt.vehicle.errors import (
     DerivedParameterError,
     MissingParametersError,
     ParameterError,
     UnknownParameterError,
-)
-from railhunt.vehicle.formatting import fmt_value
-from railhunt.vehicle.rules import (
-    FINITE,
-    NONNEGATIVE,
-    POSITIVE,
-    DerivedSpec,
-    ParameterSpec,
-    Rule,
-    parameter,
-    parameter_specs,
 )
 
 __all__ = [
@@ -49,34 +51,6 @@ __all__ = [
     "validate_with",
     "validate_value",
 ]
-
-CONTACT_HALF_DISTANCE = Rule(
-    lower=0.5,
-    lower_strict=True,
-    upper=1.0,
-    reason="half the contact-point distance in m (0.7465 for standard gauge)",
-)
-FRICTION = Rule(
-    lower=0.0,
-    lower_strict=True,
-    upper=1.5,
-    reason="a friction coefficient above 1.5 is not physical",
-)
-ROLLING_RADIUS = Rule(
-    lower=0.2,
-    lower_strict=True,
-    upper=0.7,
-    reason="rolling radius in m (a value in mm is a common mistake)",
-)
-CONTACT_ANGLE = Rule(
-    lower=0.0,
-    lower_strict=True,
-    upper=math.pi / 2,
-    upper_strict=True,
-    upper_label="pi/2",
-    reason="a contact angle in rad",
-)
-
 
 # --------------------------------------------------------------------------- the table
 
