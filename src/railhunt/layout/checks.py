@@ -234,20 +234,20 @@ def infer_parameters(spec: LayoutSpec, stated: frozenset[str] = frozenset()) -> 
         rule = p.rule
         if name not in stated:
             for slot in used:
-                rule = narrower(rule, _reasoned(slot.meaning.rule, slot))
+                rule = narrower(rule, _reasoned(slot.meaning.rule, slot, name))
                 if slot.meaning.plausible is not None and name not in spec.allowed:
-                    rule = narrower(rule, _reasoned(slot.meaning.plausible, slot, name))
+                    rule = narrower(rule, _reasoned(slot.meaning.plausible, slot, name, True))
         out.append(p._replace(unit=unit, rule=rule))
     inferred = frozenset(n for n, p in zip(specs, out, strict=True) if p.rule != specs[n].rule)
     return dataclasses.replace(spec, parameters=tuple(out), inferred=inferred)
 
 
-def _reasoned(rule: Rule, slot: Slot, allow_of: str | None = None) -> Rule:
-    """The rule with its use in the reason (``...; a spring's stiffness at element 'x'
-    stiffness``) and, for a plausible range, how to take another value on purpose."""
-    use = f"{slot.meaning.what} at {slot.label}"
-    if allow_of is not None:
-        use += f"; allow = true in [parameters.{allow_of}] takes another value on purpose"
+def _reasoned(rule: Rule, slot: Slot, name: str, plausible: bool = False) -> Rule:
+    """The rule with the parameter's use in its reason (``...; k1 is the stiffness of
+    element 'x'``) and, for a plausible range, how to take another value on purpose."""
+    use = f"{name} is the {slot.key} of {slot.owner}"
+    if plausible:
+        use += f"; allow = true in [parameters.{name}] takes another value on purpose"
     reason = f"{rule.reason} ({use})" if rule.reason else use
     return dataclasses.replace(rule, reason=reason)
 
@@ -280,6 +280,13 @@ def check_values(spec: LayoutSpec, values: Mapping[str, float]) -> None:
         if m.plausible is not None and not m.plausible.accepts(x) and not allowed:
             raise LayoutError(_message(where, slot, x, m.plausible,
                                        "is implausible: must be") + _ALLOW(slot))
+    for el in spec.elements:
+        if el.mirrored and el.name.endswith(" left") and el.at[1](values) == 0.0 and (
+                el.at_b[1](values) == 0.0):  # fmt: skip
+            raise LayoutError(f"{where}: element {el.name[:-5]!r}: mirror = true at y = 0 would "
+                              "put the element twice in the same place (twice its stiffness "
+                              "or damping): give its whole value once without mirror, or its "
+                              "points' y (the left one; the mirror is at -y)")  # fmt: skip
     for b in spec.bodies:
         mass = got.get(f"body {b.name!r} mass")
         radius = INERTIA_RADIUS.get(b.kind)

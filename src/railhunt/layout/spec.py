@@ -117,6 +117,8 @@ class ElementSpec:
         z above the top of rail); the same point unless ``at_b`` was given.
     law : tuple of (str, Expression)
         The law's values (``stiffness``, ``damping``, ...).
+    mirrored : bool
+        One of a pair made by ``mirror = true`` (its points' y must not be 0).
     """
 
     name: str
@@ -127,6 +129,7 @@ class ElementSpec:
     at: tuple[Expression, Expression, Expression]
     at_b: tuple[Expression, Expression, Expression]
     law: tuple[tuple[str, Expression], ...]
+    mirrored: bool = field(default=False, compare=False)
 
     def value(self, key: str) -> Expression:
         """The law's value ``key``."""

@@ -17,7 +17,8 @@ import re
 from functools import lru_cache
 from typing import NamedTuple
 
-__all__ = ["SYMBOLS", "Unit", "UnitError", "dimension_text", "parse_unit", "to_si"]
+__all__ = ["SYMBOLS", "Unit", "UnitError", "dimension_text", "parse_unit", "same_dimension",
+           "to_si"]  # fmt: skip
 
 #: Dimension: powers of (kg, m, s).
 Dimension = tuple[float, float, float]

@@ -162,6 +162,22 @@ class Vehicle:
 
     load = from_toml
 
+    def allowing(self, *names: str) -> Self:
+        """This vehicle, with the parameters ``names`` allowed outside the ranges their uses
+        in the layout make plausible (as ``allow = true`` in a file: a scale model, a study
+        on purpose; the rules of sign still hold): ``vehicle.allowing("W").replace(W=100)``.
+
+        Raises
+        ------
+        UnknownParameterError
+            A name is not a parameter of the vehicle.
+        """
+        for name in names:
+            if name not in self.values:
+                raise UnknownParameterError(name, None, known=tuple(self.values))
+        layout = dataclasses.replace(self.layout, allowed=self.layout.allowed | set(names))
+        return self.replace(layout=layout)
+
     def replace(self, **changes: Any) -> Self:
         """Return a validated copy with some parameters (or name/description) changed.
 
@@ -373,9 +389,9 @@ def _follow(layout: "LayoutSpec", given: dict[str, Any]) -> tuple["LayoutSpec", 
     texts = dict(layout.formulas)
     for name in overridden:
         inputs = ", ".join(sorted(_inputs(texts[name])))
-        warnings.warn(f"{name} = {texts[name]!r} in the layout is set directly: it no "
-                      f"longer follows {inputs} (change {inputs} instead to keep the "
-                      "formula)", DerivedOverrideWarning, stacklevel=4)  # fmt: skip
+        warnings.warn(f"{name} is derived in the layout ({name} = {texts[name]!r}): set "
+                      f"directly, it no longer follows {inputs}; change {inputs} instead to "
+                      "keep the formula", DerivedOverrideWarning, stacklevel=4)  # fmt: skip
     formulas = tuple((n, t) for n, t in layout.formulas if n not in overridden)
     return dataclasses.replace(layout, formulas=formulas), values
 

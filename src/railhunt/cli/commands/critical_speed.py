@@ -214,8 +214,9 @@ def critical_speed_command(
         "note",
     ):
         table.add_column(head, justify="left" if head in ("verdict", "note") else "right")
+    leading = vehicle.assembly.layout.wheelsets[0]
     for i, trial in enumerate(result.trials, 1):
-        note = _trial_note(trial)
+        note = _trial_note(trial, leading)
         table.add_row(
             str(i),
             f"{trial.speed_kmh:g}",
@@ -228,7 +229,7 @@ def critical_speed_command(
         )
     console = stdout_console()
     console.print(table)
-    if any(_trial_note(t) == STEADY for t in result.trials):
+    if any(_trial_note(t, leading).endswith(STEADY) for t in result.trials):
         from railhunt.verdicts import STEADY_CYCLE, VERDICTS
 
         console.print(f"{STEADY}: {VERDICTS[STEADY_CYCLE]} trend at the end: the verdict was "
@@ -248,15 +249,18 @@ def critical_speed_command(
 STEADY = "steady cycle"
 
 
-def _trial_note(trial: Any) -> str:
-    """The note column: the solver's status if not ok, else how the verdict was taken."""
+def _trial_note(trial: Any, leading: str = "") -> str:
+    """The note column: the solver's status if not ok, else how the verdict was taken;
+    first the deciding body when it is not the leading wheelset (``leading``)."""
+    body = getattr(trial, "body", "")
+    by = f"{body}: " if body and body != leading and trial.verdict != "stable" else ""
     if trial.verdict in ("derailed", "blow-up", "undecided"):
-        return getattr(trial, "reason", "") or trial.verdict
+        return by + (getattr(trial, "reason", "") or trial.verdict)
     if trial.status != "ok":
-        return trial.status
+        return by + trial.status
     if not trial.decided:
-        return "trend at the end"
-    return STEADY if trial.verdict == "hunting" else ""
+        return by + "trend at the end"
+    return (by + STEADY) if trial.verdict == "hunting" else by.rstrip(": ")
 
 
 def _above_linear(result: Any, linear: Any) -> bool:
@@ -304,9 +308,11 @@ def _announce_search(vehicle: Any, excitation: Any, start_kmh: float, step_kmh: 
 
 def _nonlinear_line(result: Any, tol_kmh: float) -> str:
     if result.bracketed:
+        body = getattr(result, "deciding_body", "")
+        by = f" ({body})" if body else ""
         return (
             f"nonlinear critical speed: {result.speed_kmh:g} km/h (highest stable speed; "
-            f"hunting at {result.first_hunting_kmh:g} km/h, resolution {tol_kmh:g} km/h)"
+            f"hunting at {result.first_hunting_kmh:g} km/h{by}, resolution {tol_kmh:g} km/h)"
         )
     verdicts = {t.verdict for t in result.trials}
     top = max((t.speed_kmh for t in result.trials), default=800.0)
@@ -344,6 +350,7 @@ def _critical_json(
                           else result.limit.to_dict()),
         "bracketed": bool(result.bracketed),
         "first_hunting_speed_kmh": result.first_hunting_kmh,
+        "deciding_body": getattr(result, "deciding_body", ""),
         "tol_kmh": tol_kmh,
         "above_linear_critical_speed": _above_linear(result, linear),
         "vehicle": vehicle.name,
@@ -361,6 +368,7 @@ def _critical_json(
                 "decided": bool(t.decided),
                 "status": t.status,
                 "reason": getattr(t, "reason", ""),
+                "body": getattr(t, "body", ""),
             }
             for t in result.trials
         ],
