@@ -5,9 +5,9 @@ and judged from the envelopes of the lateral displacements of every body that ca
 after the defect (every wheelset, then the bogie frames; the worst decides, and the
 trial says which body that was): *stable* (the motion died out) or not
 (*hunting*, *undecided*, *derailed* or *blow-up*; the words are defined in
-:mod:`railhunt.verdicts`), as :mod:`railhunt.analysis.judgement` judges a run. The search starts at 300 km/h, steps by
-10 km/h until the verdict changes, then bisects to 1 km/h; the critical speed is the
-highest stable speed.
+:mod:`railhunt.verdicts`), as :mod:`railhunt.analysis.judgement` judges a run. The
+search starts at 300 km/h, steps by 10 km/h until the verdict changes, then bisects to
+1 km/h; the critical speed is the highest stable speed.
 """
 
 from __future__ import annotations

@@ -2,9 +2,10 @@
 words, the early verdict of decay, and running a speed until its verdict.
 
 Every body that can hunt is watched (:func:`watched_bodies`): every wheelset, the leading
-one first, then every bogie frame. Each is judged alone and the worst verdict decides (hunting before undecided
-before stable; among equals the first watched): a rear wheelset that hunts while the
-leading one runs quietly makes the run hunt, and the result says which body decided.
+one first, then every bogie frame. Each is judged alone and the worst verdict decides
+(hunting before undecided before stable; among equals the first watched): a rear
+wheelset that hunts while the leading one runs quietly makes the run hunt, and the
+result says which body decided.
 
 The critical-speed search (:func:`railhunt.analysis.critical.critical_speed`), the hunting
 frequency (:func:`railhunt.analysis.frequency.hunting_frequency`) and ``railhunt
