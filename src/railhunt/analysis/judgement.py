@@ -23,6 +23,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from railhunt.analysis.linearity import LINEAR_MODEL, is_linear
 from railhunt.analysis.modes import least_damped_rate
 from railhunt.kernel.integrators import OK, STATUS_NAMES
 from railhunt.kernel.layout import LAYOUT, StateLayout
@@ -114,7 +115,7 @@ def swing_peaks(t: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def judge(
     t: np.ndarray, y: np.ndarray, t_start: float, judgement: Judgement, final: bool = False,
     two_sided: bool = False, linear_rate: float | None = None,
-    equilibrium_rate: float | None = None,
+    equilibrium_rate: float | None = None, linear_model: bool = False,
 ) -> tuple[str | None, float, float]:  # fmt: skip
     """Verdict on a displacement history after ``t_start``.
 
@@ -130,7 +131,9 @@ def judge(
     largest real part of all the eigenvalues there: when it is negative, a motion still
     decaying below
     :data:`LINEAR_RANGE` at ``final`` dies out (it is inside the linear range of a stable
-    equilibrium) and is judged stable.
+    equilibrium) and is judged stable. For a ``linear_model``
+    (:func:`railhunt.analysis.linearity.is_linear`) every amplitude is in the linear range:
+    it has no limit cycle, and a still envelope near its Hopf point is its neutral motion.
 
     Returns
     -------
@@ -143,6 +146,7 @@ def judge(
     growth_rate : float
         Slope of ``ln(envelope)`` over the last ``settle_window`` (1/s); NaN if unknown.
     """
+    linear_range = math.inf if linear_model else LINEAR_RANGE
     mask = t >= t_start
     tt, yy = t[mask], y[mask]
     if tt.size < 3:
@@ -160,20 +164,20 @@ def judge(
         # Inside the linear range an envelope that changes at the linear motion's own rate
         # (or, near the Hopf point, at almost none) is that motion, not a steady cycle.
         near_hopf = (linear_rate is not None and math.isfinite(linear_rate)
-                     and amplitude < LINEAR_RANGE
+                     and amplitude < linear_range
                      and (abs(linear_rate) < judgement.settle_rate
                           or abs(rate - linear_rate) < judgement.settle_rate))  # fmt: skip
         # Inside the linear range of a stable equilibrium an envelope that still falls,
         # however slowly (two modes beating on a rear wheelset), is the motion dying out.
         falling = (equilibrium_rate is not None and equilibrium_rate < 0
-                   and amplitude < LINEAR_RANGE and rate < 0)  # fmt: skip
+                   and amplitude < linear_range and rate < 0)  # fmt: skip
         if abs(rate) < judgement.settle_rate and spread < 0.05 and not (near_hopf or falling):
             return HUNTING, float(pa[win][-1]), rate
     if final:
         if math.isfinite(rate) and rate > 0:
             return HUNTING, amplitude, rate
         linear_decay = (equilibrium_rate is not None and equilibrium_rate < 0
-                        and amplitude < LINEAR_RANGE)  # fmt: skip
+                        and amplitude < linear_range)  # fmt: skip
         if not math.isfinite(rate):  # no oscillation to fit: the trend of max |y| instead
             rate = _drift_rate(tt, yy, judgement.settle_window)
         if math.isfinite(rate) and rate < 0 and linear_decay:
@@ -224,7 +228,7 @@ def _is_frame(body: object) -> bool:
 def judge_bodies(
     t: np.ndarray, y: np.ndarray, t_start: float, judgement: Judgement, final: bool = False,
     two_sided: bool = False, linear_rate: float | None = None,
-    equilibrium_rate: float | None = None,
+    equilibrium_rate: float | None = None, linear_model: bool = False,
 ) -> tuple[str | None, float, float, int]:  # fmt: skip
     """:func:`judge` of each column of ``y`` (one per watched body); the worst verdict
     decides (hunting, then undecided, then still open, then stable; among equals the first
@@ -238,8 +242,8 @@ def judge_bodies(
         The column of the deciding body.
     """
     results = [judge(t, y[:, k], t_start, judgement, final=final, two_sided=two_sided,
-                     linear_rate=linear_rate, equilibrium_rate=equilibrium_rate)
-               for k in range(y.shape[1])]  # fmt: skip
+                     linear_rate=linear_rate, equilibrium_rate=equilibrium_rate,
+                     linear_model=linear_model) for k in range(y.shape[1])]  # fmt: skip
     for verdict in _WORST_FIRST:
         ks = [k for k, r in enumerate(results) if r[0] == verdict]
         if ks:
@@ -338,7 +342,7 @@ class RunVerdict:
 
 
 def judge_run(result: object, judgement: Judgement | None = None,
-              two_sided: bool = False) -> RunVerdict:  # fmt: skip
+              two_sided: bool = False, linear_model: bool = False) -> RunVerdict:  # fmt: skip
     """Judge a finished run of :func:`railhunt.simulate` by every body that can hunt (every
     wheelset, then the bogie frames: :func:`watched_bodies`; the worst decides),
     after the last wheelset has left the excitation, as the critical-speed search judges a
@@ -346,6 +350,9 @@ def judge_run(result: object, judgement: Judgement | None = None,
 
     ``two_sided``: judge the swing about the run's last mean position (a run in a curve,
     whose equilibrium is off the track centre) instead of the distance from the centre.
+    ``linear_model``: the run is of a linear model
+    (:func:`railhunt.analysis.linearity.is_linear`), which has no limit cycle: a still
+    envelope is its neutral motion at its Hopf speed ("undecided", in words "neutral").
     """
     judgement = judgement or Judgement()
     layout = getattr(result, "layout", LAYOUT)
@@ -375,6 +382,10 @@ def judge_run(result: object, judgement: Judgement | None = None,
     if verdict == STABLE:
         return RunVerdict("decays", amp, rate, f"decays (below {judgement.decay_amplitude * 1e3:g}"
                           " mm at the end)", body)  # fmt: skip
+    if verdict == HUNTING and linear_model:
+        return RunVerdict(UNDECIDED, amp, rate, f"neutral: an oscillation of {size}{where} that "
+                          f"neither grows nor decays ({rate:+.2g} 1/s): {LINEAR_MODEL}; this "
+                          "is (or is within the run's resolution of) that speed", body)  # fmt: skip
     if verdict == HUNTING:
         return RunVerdict("hunting", amp, rate, f"hunting: limit cycle of {size}{where}", body)
     if math.isnan(rate):
@@ -523,6 +534,7 @@ def run_verdict(
     linear_rate, equilibrium_rate = least_damped_rate(model, speed,
                                                       None if reference is None else x0,
                                                       route)  # fmt: skip
+    linear = is_linear(model)
     ts: list[np.ndarray] = []
     xs: list[np.ndarray] = []
     ys: list[np.ndarray] = []  # the watched bodies from the reference, piece by piece
@@ -566,7 +578,8 @@ def run_verdict(
         verdict, amp, rate, kk = judge_bodies(tt, y, t_exc, judgement, final=final,
                                               two_sided=reference is not None,
                                               linear_rate=linear_rate,
-                                              equilibrium_rate=equilibrium_rate)  # fmt: skip
+                                              equilibrium_rate=equilibrium_rate,
+                                              linear_model=linear)  # fmt: skip
         if verdict is not None:
             return RunOutcome(verdict, tt, np.concatenate(xs), code, amp, rate, not final,
                               watched[kk][0])  # fmt: skip

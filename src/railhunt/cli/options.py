@@ -177,7 +177,7 @@ def _parse_set(
             raise click.BadParameter(
                 f"{name}={text}: {text!r} is not a number (give the SI value, e.g. 1.5e5)"
             ) from None
-        if other_vehicle and name not in PARAMETERS:
+        if other_vehicle:  # its own table (and its uses) check it, in build_vehicle
             changes[name] = value
             continue
         try:

@@ -36,7 +36,7 @@ from railhunt.quantities.meanings import (
 from railhunt.quantities.rules import FINITE, ParameterSpec, Rule, narrower
 from railhunt.quantities.units import Dimension, UnitError, dimension_text, parse_unit
 
-__all__ = ["Slot", "check_values", "infer_parameters", "slots"]
+__all__ = ["Slot", "allow", "check_values", "infer_parameters", "slots"]
 
 
 class Slot(NamedTuple):
@@ -240,6 +240,27 @@ def infer_parameters(spec: LayoutSpec, stated: frozenset[str] = frozenset()) -> 
         out.append(p._replace(unit=unit, rule=rule))
     inferred = frozenset(n for n, p in zip(specs, out, strict=True) if p.rule != specs[n].rule)
     return dataclasses.replace(spec, parameters=tuple(out), inferred=inferred)
+
+
+def allow(spec: LayoutSpec, names: frozenset[str] | set[str]) -> LayoutSpec:
+    """The layout with ``names`` allowed outside their plausible ranges (``allow =
+    true``): a parameter whose rule came from its uses keeps only their rules of sign."""
+    allowed = spec.allowed | frozenset(names)
+    if allowed == spec.allowed:
+        return spec
+    uses: dict[str, list[Slot]] = {}
+    for slot in slots(spec):
+        if slot.parameter in names:
+            uses.setdefault(slot.parameter, []).append(slot)
+    parameters = []
+    for p in spec.parameters:
+        if p.name in names and p.name in spec.inferred:
+            rule = FINITE
+            for slot in uses.get(p.name, []):
+                rule = narrower(rule, _reasoned(slot.meaning.rule, slot, p.name))
+            p = p._replace(rule=rule)
+        parameters.append(p)
+    return dataclasses.replace(spec, parameters=tuple(parameters), allowed=allowed)
 
 
 def _reasoned(rule: Rule, slot: Slot, name: str, plausible: bool = False) -> Rule:

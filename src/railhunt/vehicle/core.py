@@ -175,8 +175,9 @@ class Vehicle:
         for name in names:
             if name not in self.values:
                 raise UnknownParameterError(name, None, known=tuple(self.values))
-        layout = dataclasses.replace(self.layout, allowed=self.layout.allowed | set(names))
-        return self.replace(layout=layout)
+        from railhunt.layout.checks import allow
+
+        return self.replace(layout=allow(self.layout, set(names)))
 
     def replace(self, **changes: Any) -> Self:
         """Return a validated copy with some parameters (or name/description) changed.

@@ -352,7 +352,9 @@ def _build_vehicle(data: dict[str, Any], where: str, default_name: str, depth: i
     layout = paper_layout()
     allowed = _allowed(table, where)
     if allowed:
-        layout = dataclasses.replace(layout, allowed=layout.allowed | allowed)
+        from railhunt.layout.checks import allow
+
+        layout = allow(layout, allowed)
     return Vehicle(
         name=meta.get("name", default_name),
         description=meta.get("description", ""),
