@@ -158,7 +158,7 @@ def _parse_set(
     ctx: click.Context, param: click.Parameter, items: tuple[str, ...]
 ) -> dict[str, float]:
     """Option callback of ``--set``: ``NAME=VALUE`` items to a dict of checked SI floats."""
-    from railhunt.vehicle import PARAMETERS, UnknownParameterError, validate_value
+    from railhunt.vehicle import UnknownParameterError, validate_value
 
     # --vehicle is eager (processed first): another layout's parameters are checked by
     # Vehicle.replace when the vehicle is built (build_vehicle), against its own table.
