@@ -11,7 +11,7 @@ check gives a :class:`Limit` (the limit, the value, the place); a result carries
 | wheel unloading | ``dQ/Q0 <= 0.6`` (``Q0``: the axle's mean wheel load) | EN 14363 |
 | wheel lift | ``Q`` at the model's 1 % floor of ``Q0`` (a lifted wheel) | railhunt |
 | track shifting | ``abs(sum Y) <= 10 kN + 2 Q0 / 3`` (Prud'homme, alpha = 1) | EN 14363 |
-| cant deficiency | ``abs(I) <= 0.165 m`` (the model's range, see below; a cant excess, I < 0, by the same) | railhunt |
+| cant deficiency | ``abs(I) <= 0.165 m`` (the model's range; I < 0: a cant excess) | railhunt |
 | bump stop | car body to bogie beyond the free play plus 40 mm of rubber | railhunt |
 | flange clearance | a wheelset past its flange (see below) | railhunt |
 
