@@ -33,7 +33,7 @@ from railhunt.quantities.meanings import (
     body_meaning,
     element_meaning,
 )
-from railhunt.quantities.rules import FINITE, ParameterSpec, Rule, narrower
+from railhunt.quantities.rules import FINITE, ParameterSpec, Rule, contains, narrower
 from railhunt.quantities.units import Dimension, UnitError, dimension_text, parse_unit
 
 __all__ = ["Slot", "allow", "check_values", "infer_parameters", "slots"]
@@ -276,6 +276,48 @@ def _reasoned(rule: Rule, slot: Slot, name: str, plausible: bool = False) -> Rul
 # --------------------------------------------------------------------------- values
 
 
+class _Check(NamedTuple):
+    """One distinct expression of a layout's slots, with the range that all its slots'
+    rules (and plausible ranges, unless allowed) accept: the fast path of a check."""
+
+    expr: Expression
+    rule: Rule
+    slots: tuple[Slot, ...]
+
+
+def _plan(spec: LayoutSpec) -> tuple[_Check, ...]:
+    """The checks of a layout's values, made once and kept on the layout: each distinct
+    expression once, with the narrowest range its slots accept; a slot that is a bare
+    parameter whose own rule already implies the slot's rules (a rule inferred from its
+    uses) is left to the parameter's check."""
+    plan = spec.__dict__.get("_checks")
+    if plan is not None:
+        return plan
+    specs = spec.specs
+    grouped: dict[Expression, list[Slot]] = {}
+    for slot in slots(spec):
+        name = slot.parameter
+        allowed = bool(spec.allowed & slot.expr.names)
+        if name is not None and name in specs:
+            own = specs[name].rule
+            m = slot.meaning
+            if contains(m.rule, own) and (m.plausible is None or allowed
+                                          or contains(m.plausible, own)):  # fmt: skip
+                continue
+        grouped.setdefault(slot.expr, []).append(slot)
+    out = []
+    for expr, group in grouped.items():
+        rule = FINITE
+        for slot in group:
+            rule = narrower(rule, slot.meaning.rule)
+            if slot.meaning.plausible is not None and not spec.allowed & expr.names:
+                rule = narrower(rule, slot.meaning.plausible)
+        out.append(_Check(expr, rule, tuple(group)))
+    plan = tuple(out)
+    object.__setattr__(spec, "_checks", plan)
+    return plan
+
+
 def check_values(spec: LayoutSpec, values: Mapping[str, float]) -> None:
     """Check the values a vehicle of this layout is built with, before any assembly.
 
@@ -284,23 +326,34 @@ def check_values(spec: LayoutSpec, values: Mapping[str, float]) -> None:
     LayoutError
         A slot's value breaks its rule of sign, or lies outside its plausible range and no
         parameter it is computed from says ``allow = true``; a body's inertia is
-        implausible for its mass; two wheelsets are closer than their wheels' diameter.
+        implausible for its mass; two wheelsets are closer than their wheels' radii
+        together; an element mirrored at y = 0.
     """
     where = spec.source or "layout"
-    got: dict[str, float] = {}
-    for slot in slots(spec):
+    for check in _plan(spec):
         try:
-            x = slot.expr(values)
+            x = check.expr(values)
         except ExpressionError as exc:
-            raise LayoutError(f"{where}: {slot.label}: {exc}") from None
-        got[slot.label] = x
-        m = slot.meaning
-        if not m.rule.accepts(x):
-            raise LayoutError(_message(where, slot, x, m.rule, "is invalid: must be"))
-        allowed = bool(spec.allowed & slot.expr.names)
-        if m.plausible is not None and not m.plausible.accepts(x) and not allowed:
-            raise LayoutError(_message(where, slot, x, m.plausible,
-                                       "is implausible: must be") + _ALLOW(slot))
+            raise LayoutError(f"{where}: {check.slots[0].label}: {exc}") from None
+        if not check.rule.accepts(x):
+            _refuse(spec, where, check, x)
+    for b in spec.bodies:
+        radius = INERTIA_RADIUS.get(b.kind)
+        if radius is None or b.mass is None:
+            continue
+        for key in ("yaw_inertia", "roll_inertia"):
+            expr = getattr(b, key)
+            if expr is None or spec.allowed & (expr.names | b.mass.names):
+                continue
+            mass, inertia = b.mass(values), expr(values)
+            rg = math.sqrt(inertia / mass) if mass > 0 and inertia > 0 else math.nan
+            if not radius.accepts(rg):
+                raise LayoutError(
+                    f"{where}: body {b.name!r}: {key} = {with_unit(inertia, 'kg*m^2')} is "
+                    f"implausible for its mass of {with_unit(mass, 'kg')}: its radius of "
+                    f"gyration sqrt(J/m) = {rg:.3g} m is outside {_span(radius)} m "
+                    f"({radius.reason}; an inertia in t*m^2 is a common mistake); to use it "
+                    "on purpose, give it as a parameter with allow = true")  # fmt: skip
     for el in spec.elements:
         if el.mirrored and el.name.endswith(" left") and el.at[1](values) == 0.0 and (
                 el.at_b[1](values) == 0.0):  # fmt: skip
@@ -308,25 +361,21 @@ def check_values(spec: LayoutSpec, values: Mapping[str, float]) -> None:
                               "put the element twice in the same place (twice its stiffness "
                               "or damping): give its whole value once without mirror, or its "
                               "points' y (the left one; the mirror is at -y)")  # fmt: skip
-    for b in spec.bodies:
-        mass = got.get(f"body {b.name!r} mass")
-        radius = INERTIA_RADIUS.get(b.kind)
-        for key in ("yaw_inertia", "roll_inertia"):
-            inertia = got.get(f"body {b.name!r} {key}")
-            expr = getattr(b, key)
-            if mass is None or inertia is None or radius is None or spec.allowed & (
-                    expr.names | b.mass.names):  # fmt: skip
-                continue
-            rg = math.sqrt(inertia / mass)
-            if not radius.accepts(rg):
-                raise LayoutError(
-                    f"{where}: body {b.name!r}: {key} = {with_unit(inertia, 'kg*m^2')} is "
-                    f"implausible for its mass of {with_unit(mass, 'kg')}: its radius of "
-                    f"gyration sqrt(J/m) = {rg:.3g} m is outside {_span(radius)} m "
-                    f"({radius.reason}; an inertia in t*m^2 is a common mistake); to use it "
-                    "on purpose, give it as a parameter "
-                    "with allow = true")  # fmt: skip
     _check_spacing(spec, values, where)
+
+
+def _refuse(spec: LayoutSpec, where: str, check: _Check, x: float) -> None:
+    """The message of the first slot whose rule (or plausible range) ``x`` breaks."""
+    for slot in check.slots:
+        m = slot.meaning
+        if not m.rule.accepts(x):
+            raise LayoutError(_message(where, slot, x, m.rule, "is invalid: must be"))
+    for slot in check.slots:
+        m = slot.meaning
+        if m.plausible is not None and not m.plausible.accepts(x):
+            raise LayoutError(_message(where, slot, x, m.plausible, "is implausible: must be")
+                              + _ALLOW(slot))  # fmt: skip
+    raise LayoutError(f"{where}: {check.slots[0].label} = {x!r} is invalid")  # not reached
 
 
 def _check_spacing(spec: LayoutSpec, values: Mapping[str, float], where: str) -> None:

@@ -9,7 +9,7 @@ numbers, never the file. Everything here is immutable and hashable.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from typing import TYPE_CHECKING
 
 from railhunt.layout.expressions import Expression
@@ -195,6 +195,20 @@ class LayoutSpec:
     formulas: tuple[tuple[str, str], ...] = ()
     allowed: frozenset[str] = frozenset()
     inferred: frozenset[str] = frozenset()
+
+    def __hash__(self) -> int:
+        # Hashed once and kept: the layout is the key of the assembly's and the checks'
+        # caches, hashed at every vehicle built from it (a sweep builds one per point).
+        h = self.__dict__.get("_hash")
+        if h is None:
+            h = hash(tuple(getattr(self, f.name) for f in fields(self) if f.compare))
+            object.__setattr__(self, "_hash", h)
+        return h
+
+    def __getstate__(self) -> dict:
+        # What is kept per process (the hash of its strings differs between processes,
+        # e.g. Dask workers) is not pickled.
+        return {k: v for k, v in self.__dict__.items() if not k.startswith("_")}
 
     def formula(self, name: str) -> str | None:
         """The expression a derived parameter is computed from (None: an independent one)."""
