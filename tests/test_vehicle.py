@@ -446,15 +446,23 @@ def test_missing_parameters_listed(tmp_path):
 
 
 def test_unit_mismatch(tmp_path):
+    """A unit of the parameter's dimension is converted (300 kN*s/m is 3e5 N*s/m); one of
+    another dimension, or an unknown one, is refused naming both units."""
     path = write(
         tmp_path,
         '[vehicle]\nbase = "paper2019"\n[parameters.C_d1]\nvalue = 300.0\nunit = "kN*s/m"\n',
     )
-    with pytest.raises(ParameterError) as info:
-        load_vehicle(path)
-    msg = str(info.value)
-    assert info.value.parameter == "C_d1"
-    assert "kN*s/m" in msg and "'N*s/m'" in msg
+    assert load_vehicle(path).C_d1 == 3e5
+    for unit in ("kN/m", "lbf*s/in"):
+        path = write(
+            tmp_path,
+            f'[vehicle]\nbase = "paper2019"\n[parameters.C_d1]\nvalue = 300.0\nunit = "{unit}"\n',
+        )
+        with pytest.raises(ParameterError) as info:
+            load_vehicle(path)
+        msg = str(info.value)
+        assert info.value.parameter == "C_d1"
+        assert unit in msg and ("'N*s/m'" in msg or "not a unit railhunt knows" in msg)
 
 
 def test_matching_unit_accepted(tmp_path):

@@ -309,7 +309,8 @@ class Vehicle:
         return out
 
     def parameter_table(self, include_derived: bool = False) -> list[tuple[str, float, str, str]]:
-        """Rows ``(name, value, unit, meaning)`` for reports, in the layout's order.
+        """Rows ``(name, value, unit, meaning)`` for reports, in the layout's order; a
+        derived parameter's meaning ends with its formula (``(= GPIAB / 0.60252)``).
 
         Parameters
         ----------
@@ -321,7 +322,9 @@ class Vehicle:
         list of tuple (str, float, str, str)
         """
         specs = self.layout.specs
-        rows = [(n, v, specs[n].unit, specs[n].meaning) for n, v in self.values.items()]
+        formulas = dict(self.layout.formulas)
+        rows = [(n, v, specs[n].unit, specs[n].meaning if n not in formulas else
+                 f"{specs[n].meaning} (= {formulas[n]})".lstrip()) for n, v in self.values.items()]
         if include_derived:
             values = self.derived()
             for spec in DERIVED.values():
