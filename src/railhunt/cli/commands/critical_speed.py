@@ -121,9 +121,10 @@ def critical_speed_command(
 
     \b
     Nonlinear critical speed (the paper's method): at each trial speed the
-    vehicle runs over one lateral track defect and the leading wheelset's
-    motion is judged 'stable' (it died out) or not: 'hunting', 'undecided',
-    'derailed' or 'blow-up' (the verdicts are defined below). Starting at
+    vehicle runs over one lateral track defect and the motion of every
+    wheelset and bogie frame is judged 'stable' (it died out) or not:
+    'hunting', 'undecided', 'derailed' or 'blow-up' (the verdicts are defined
+    below); the worst decides, and the table names it. Starting at
     --start the speed is stepped by --step until the verdict changes, then
     bisected to --tol. The result is the highest stable speed (km/h); in a
     curve the search stops at the first limit of the validity envelope.
@@ -234,7 +235,7 @@ def critical_speed_command(
 
         console.print(f"{STEADY}: {VERDICTS[STEADY_CYCLE]} trend at the end: the verdict was "
                       "taken on the envelope's trend when the 60 s ran out")  # fmt: skip
-    console.print(_nonlinear_line(result, tol_kmh))
+    console.print(_nonlinear_line(result, tol_kmh, leading))
     for warning in getattr(result, "warnings", []):
         console.print(f"[yellow]warning: {warning}[/yellow]")
     console.print(linear_critical_speed_line(linear, curved=curve is not None))
@@ -306,10 +307,10 @@ def _announce_search(vehicle: Any, excitation: Any, start_kmh: float, step_kmh: 
                       "simulated", most_simulated=most), vehicle, kmh_to_ms(start_kmh))  # fmt: skip
 
 
-def _nonlinear_line(result: Any, tol_kmh: float) -> str:
+def _nonlinear_line(result: Any, tol_kmh: float, leading: str = "") -> str:
     if result.bracketed:
         body = getattr(result, "deciding_body", "")
-        by = f" ({body})" if body else ""
+        by = f" ({body})" if body and body != leading else ""  # the leading one: as always
         return (
             f"nonlinear critical speed: {result.speed_kmh:g} km/h (highest stable speed; "
             f"hunting at {result.first_hunting_kmh:g} km/h{by}, resolution {tol_kmh:g} km/h)"
