@@ -163,6 +163,10 @@ def test_suspension_forces_sum_to_zero():
         np.testing.assert_allclose(asm.stop_rows @ u, 0.0, atol=1e-12)
 
 
+#: A factor of 1e9 on a body's mass and inertia, implausible on purpose (``allow``).
+HEAVY = '\n[parameters.heavy]\nvalue = 1e9\nunit = "1"\nallow = true\n'
+
+
 def test_fixed_body_is_an_infinitely_heavy_one():
     """A ``fixed`` car body gives the linear critical speed of the same car body with mass
     and inertias 1e9 times larger (within 0.1 %)."""
@@ -172,9 +176,10 @@ def test_fixed_body_is_an_infinitely_heavy_one():
         '[[body]]\nname = "bogie1"')]  # fmt: skip
     fixed = PAPER_TEXT.replace(block, block.replace('kind = "car"', 'kind = "fixed"')
                                .replace('yaw_inertia = "J_cz"\nroll_inertia = "J_cx"\n', ""))
-    heavy = PAPER_TEXT.replace(block, block.replace('"M_c"', '"M_c * 1e9"')
-                               .replace('"J_cz"', '"J_cz * 1e9"')
+    heavy = PAPER_TEXT.replace(block, block.replace('"M_c"', '"M_c * heavy"')
+                               .replace('"J_cz"', '"J_cz * heavy"')
                                .replace('roll_inertia = "J_cx"', 'coordinates = ["y", "psi"]'))
+    heavy += HEAVY  # a car body of 28 million t, on purpose
     v_fixed, v_heavy = load_vehicle(_tmp(fixed)), load_vehicle(_tmp(heavy))
     assert Model(v_fixed).layout.n_dof == 14
     s_fixed = linear_critical_speed(v_fixed).speed_kmh
@@ -255,7 +260,7 @@ def test_fixed_body_of_the_cooperrider_bogie_is_an_infinitely_heavy_one():
     block = 'kind = "fixed"\nx = 0.0\nheight = "r0 + h1 + h2"\n'
     assert block in text
     heavy = text.replace(block, block.replace('"fixed"', '"car"') + 'coordinates = ["y", "psi"]'
-                         '\nmass = "1e9 * m_f"\nyaw_inertia = "1e9 * I_f"\n')
+                         '\nmass = "heavy * m_f"\nyaw_inertia = "heavy * I_f"\n') + HEAVY
     s_fixed = linear_critical_speed(Vehicle.shipped("cooperrider_bogie")).speed_kmh
     assert math.isfinite(s_fixed)
     # The heavy body adds its own modes, almost undamped at |lambda| ~ 1e-3 1/s, whose

@@ -153,8 +153,9 @@ def test_fixed_body_equals_a_very_heavy_one(tmp_path):
     as 1/mass: weakly unstable at every speed, so they are left out of the comparison.)"""
     src = Path(railhunt.__file__).parent / "data" / "vehicles" / "cooperrider_bogie.toml"
     text = src.read_text(encoding="utf-8")
-    heavy = text.replace('kind = "fixed"', 'kind = "car"\nmass = "1e9 * m_f"\n'
-                         'yaw_inertia = "1e9 * I_f"\nroll_inertia = "1e9 * I_fr"', 1)
+    heavy = text.replace('kind = "fixed"', 'kind = "car"\nmass = "heavy * m_f"\n'
+                         'yaw_inertia = "heavy * I_f"\nroll_inertia = "heavy * I_fr"', 1)
+    heavy += '\n[parameters.heavy]\nvalue = 1e9\nallow = true\n'  # implausible on purpose
     heavy = heavy.replace('name = "cooperrider_bogie"', 'name = "cooperrider_heavy_body"')
     path = tmp_path / "heavy.toml"
     path.write_text(heavy, encoding="utf-8")

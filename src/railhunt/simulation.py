@@ -574,5 +574,5 @@ def simulate(
     )  # fmt: skip
     from railhunt.validity import run_limits
 
-    result.limits = run_limits(result, model, excitation)
+    result.limits = run_limits(result, model, excitation, route)
     return result

@@ -11,7 +11,7 @@ check gives a :class:`Limit` (the limit, the value, the place); a result carries
 | wheel unloading | ``dQ/Q0 <= 0.6`` (``Q0``: the axle's mean wheel load) | EN 14363 |
 | wheel lift | ``Q`` at the model's 1 % floor of ``Q0`` (a lifted wheel) | railhunt |
 | track shifting | ``abs(sum Y) <= 10 kN + 2 Q0 / 3`` (Prud'homme, alpha = 1) | EN 14363 |
-| cant deficiency | ``abs(I) <= 0.165 m`` (the model's range, see below) | railhunt |
+| cant deficiency | ``abs(I) <= 0.165 m`` (the model's range; I < 0: a cant excess) | railhunt |
 | bump stop | car body to bogie beyond the free play plus 40 mm of rubber | railhunt |
 | flange clearance | a wheelset past its flange (see below) | railhunt |
 
@@ -53,8 +53,8 @@ CANT_DEFICIENCY_LIMIT = 0.165
 BUMP_STOP_TRAVEL = 0.040
 
 #: The names of the limits, as :attr:`Limit.name` gives them.
-LIMIT_NAMES = ("Y/Q", "wheel unloading", "wheel lift", "ΣY", "cant deficiency", "bump stop",
-               "flange clearance")  # fmt: skip
+LIMIT_NAMES = ("Y/Q", "wheel unloading", "wheel lift", "ΣY", "cant deficiency", "cant excess",
+               "bump stop", "flange clearance")  # fmt: skip
 
 
 def _wheel_names(n_wheelsets: int) -> tuple[str, ...]:
@@ -237,17 +237,22 @@ def check_motion(x: np.ndarray, model: Any, where: list[str] | None = None,
     out: list[Limit] = []
     system = model.system()
     n_dof = system.linear.shape[0]  # the model's own layout: coordinates first
-    if system.stop_rows.shape[0]:
-        gap = system.stop[:, 0]
+    # Bump stops between two bodies (a stop to the track is a flange: its force is in the
+    # wheels' guiding forces, and the flange clearance below is its limit).
+    track = np.zeros(system.stop.shape[0], dtype=bool)
+    track[:system.stop_wheelset.shape[0]] = system.stop_wheelset >= 0
+    between = np.flatnonzero(~track)
+    if between.size:
+        gap = system.stop[between, 0]
         q = x[:, :n_dof] if geometry is None else x[:, :n_dof] + geometry[:, :n_dof]
-        travel = np.abs(q @ system.stop_rows.T)
+        travel = np.abs(q @ system.stop_rows[between].T)
         limit = gap + BUMP_STOP_TRAVEL
         over = travel - limit[None, :]
         if np.max(over) > 0:
             row, k = np.unravel_index(np.argmax(over), over.shape)
             out.append(Limit("bump stop", float(limit[k]), float(travel[row, k]), "m",
-                             f"{'front' if k == 0 else 'rear'} bogie to car body, "
-                             f"{where[row]}", "railhunt"))  # fmt: skip
+                             f"{_stop_name(model, int(between[k]))}, {where[row]}",
+                             "railhunt"))  # fmt: skip
     ys = x[:, system.wheelsets[:, 0]]
     if track_y is not None:
         ys = ys - track_y
@@ -256,6 +261,30 @@ def check_motion(x: np.ndarray, model: Any, where: list[str] | None = None,
         row, k = np.unravel_index(np.argmax(np.abs(ys)), ys.shape)
         out.append(Limit("flange clearance", clearance, float(abs(ys[row, k])), "m",
                          f"wheelset {k + 1}, {where[row]}", "railhunt"))  # fmt: skip
+    return out
+
+
+def _stop_name(model: Any, k: int) -> str:
+    """The name of the model's ``k``-th stop element (its layout's), e.g. ``"secondary
+    lateral bump stop, front bogie"``."""
+    vehicle = getattr(model, "vehicle", None)
+    layout = getattr(vehicle, "layout", None)
+    stops = [el.name for el in getattr(layout, "elements", ()) if el.kind == "stop"]
+    if k < len(stops):
+        return stops[k]
+    return f"{'front' if k == 0 else 'rear'} bogie to car body"
+
+
+def curve_offsets_along(model: Any, speed: float, t: np.ndarray, route: np.ndarray) -> np.ndarray:
+    """The curve's offsets of the coordinates at each time of a run through ``route``
+    (:func:`railhunt.kernel.rhs.curve_geometry`, one row per time, ``n_dof`` columns)."""
+    from railhunt.kernel.rhs import curve_geometry
+
+    v, system = model.args(speed, route=route)
+    n = system.linear.shape[0]
+    out = np.empty((t.size, n))
+    for i, ti in enumerate(t):
+        out[i] = curve_geometry(float(ti), v, system)[:n]
     return out
 
 
@@ -268,10 +297,12 @@ def static_wheel_load(model: Any) -> float:
 
 
 def check_cant_deficiency(cant_deficiency: float, where: str) -> list[Limit]:
-    """The cant deficiency (m) against :data:`CANT_DEFICIENCY_LIMIT`."""
+    """The cant deficiency (m; negative: a cant excess) against
+    :data:`CANT_DEFICIENCY_LIMIT`: a negative one beyond it is named a cant excess."""
     if abs(cant_deficiency) > CANT_DEFICIENCY_LIMIT:
-        return [Limit("cant deficiency", CANT_DEFICIENCY_LIMIT, abs(cant_deficiency), "m",
-                      where, "railhunt")]  # fmt: skip
+        name = "cant deficiency" if cant_deficiency > 0 else "cant excess"
+        return [Limit(name, CANT_DEFICIENCY_LIMIT, abs(cant_deficiency), "m", where,
+                      "railhunt")]  # fmt: skip
     return []
 
 
@@ -292,9 +323,11 @@ def curving_limits(result: Any, model: Any) -> list[Limit]:
     return out
 
 
-def run_limits(result: Any, model: Any, excitation: object = None) -> list[Limit]:
+def run_limits(result: Any, model: Any, excitation: object = None,
+               route: np.ndarray | None = None) -> list[Limit]:  # fmt: skip
     """Every limit a simulated run (:class:`~railhunt.simulation.SimulationResult`) reaches
-    (wheel forces from its derived channels, bump stops, flange clearance)."""
+    (wheel forces from its derived channels, bump stops, flange clearance); ``route``: the
+    curve the run went through (its offsets enter the bump stops' travel)."""
     t = np.asarray(result.t)
     if t.size == 0:
         return []
@@ -315,7 +348,9 @@ def run_limits(result: Any, model: Any, excitation: object = None) -> list[Limit
     trk = model.system(excitation)
     track_y = rail_offsets(t, float(result.speed), trk.wheelset_delay, trk.track,
                            trk.track_samples)  # fmt: skip
-    out += check_motion(result.x, model, where, track_y)
+    geometry = None if route is None else curve_offsets_along(model, float(result.speed), t,
+                                                              route)  # fmt: skip
+    out += check_motion(result.x, model, where, track_y, geometry)
     return out
 
 

@@ -28,14 +28,17 @@ LIMIT_REACHED = "limit reached"
 
 #: Every verdict word and its one meaning.
 VERDICTS: dict[str, str] = {
-    STABLE: "the motion died out: the envelope of the leading wheelset's lateral "
-            "displacement fell below the decay threshold (0.02 mm, or a tenth of the "
-            "excitation when that is smaller); or, about an equilibrium whose eigenvalues "
-            "all decay, it fell below 0.3 mm (and half the excitation) while halving "
-            "within a second (decided early), or was still decaying below 1 mm (the linear "
-            "range) when the longest duration ran out. Nothing else is called stable.",
+    STABLE: "the motion died out: the envelope of the lateral displacement of every "
+            "wheelset and bogie frame fell below the decay threshold (0.02 mm, or a tenth "
+            "of the excitation when that is smaller); or, about an equilibrium whose "
+            "eigenvalues all decay, it fell below 0.3 mm (and half the excitation) while "
+            "halving within a second (decided early), or was still decaying below 1 mm "
+            "(the linear range) when the longest duration ran out. Nothing else is called "
+            "stable.",
     HUNTING: "the motion did not die out and kept oscillating: it settled on a limit "
-             "cycle (a steady cycle) or kept growing, without leaving the track.",
+             "cycle (a steady cycle) or kept growing, without leaving the track. Every "
+             "wheelset and bogie frame is judged; the worst decides, and the result names "
+             "it.",
     STEADY_CYCLE: "hunting on a limit cycle: the envelope is stationary (within ±0.01 1/s "
                   "over 3 s, peaks within 5 %; a small negative growth is still a cycle), "
                   "outside the range where the linear motion "

@@ -17,7 +17,7 @@ import numpy as np
 from railhunt.analysis.periodic import PeriodicOrbit
 from railhunt.results import Columns, ResultDisplay, Row
 
-HOPF_TYPES = ("subcritical", "supercritical-a", "supercritical-b")
+HOPF_TYPES = ("subcritical", "supercritical-a", "supercritical-b", "linear")
 
 
 @dataclass
@@ -44,8 +44,9 @@ class Branch(ResultDisplay):
     wheelset_amplitudes : numpy.ndarray, shape (n, 4)
         Amplitude of every wheelset (m).
     origin : str
-        ``"hopf"`` (born at the Hopf point) or ``"simulation"`` (found from a simulated
-        large-amplitude cycle and followed both ways).
+        ``"hopf"`` (born at the Hopf point), ``"simulation"`` (found from a simulated
+        large-amplitude cycle and followed both ways) or ``"linear"`` (a linear model's
+        neutral oscillations at its Hopf speed: :func:`linear_branch`).
     folds : list of Fold
         Turning points in the speed.
     """
@@ -143,7 +144,9 @@ class BifurcationDiagram(ResultDisplay):
         range downward (``fold_below_range``: the lowest cycle lies below the range).
     hopf_type : str
         One of ``"subcritical"``, ``"supercritical-a"``, ``"supercritical-b"`` (module
-        docstring).
+        docstring), or ``"linear"``: a linear model, whose only periodic orbits are its
+        neutral oscillations at the Hopf speed, of any amplitude (no limit cycle, no fold;
+        :mod:`railhunt.analysis.linearity`).
     speed_range_kmh : tuple of float
         The range the continuation was confined to.
     complete : bool
@@ -349,3 +352,18 @@ def on_branch(branch: Branch, orbit: PeriodicOrbit, rel: float = 0.02) -> bool:
         ):
             return True
     return False
+
+
+def linear_branch(hopf_kmh: float, period: float, shape: np.ndarray, wheelset_y: np.ndarray,
+                  max_amplitude: float, n: int = 16) -> Branch:  # fmt: skip
+    """The periodic orbits of a linear model (:mod:`railhunt.analysis.linearity`): at its
+    Hopf speed, of every amplitude from 0 to ``max_amplitude`` (m), with the period and
+    shape of the crossing eigenvector (``shape``, real, 1 at the measured coordinate;
+    ``wheelset_y`` its wheelsets' lateral displacements). A vertical line, no fold; the
+    orbits are neutral (multiplier 1: not stable)."""
+    amp = np.linspace(0.0, max_amplitude, n)
+    ws = np.abs(shape[wheelset_y])
+    lead = ws[0] if ws[0] > 0 else 1.0
+    return Branch(np.full(n, float(hopf_kmh)), amp, np.full(n, float(period)),
+                  np.zeros(n, dtype=bool), np.r_[math.nan, np.ones(n - 1)],
+                  np.outer(amp, ws / lead), "linear", [])  # fmt: skip

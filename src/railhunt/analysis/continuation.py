@@ -37,6 +37,7 @@ from railhunt.analysis.branches import (
     Branch,
     Fold,
     classify_hopf,
+    linear_branch,
     make_branch,
     on_branch,
 )
@@ -53,6 +54,7 @@ from railhunt.analysis.hopf_start import (  # noqa: F401
     small_orbit_seeds,
 )
 from railhunt.analysis.linear import linear_critical_speed
+from railhunt.analysis.linearity import LINEAR_MODEL, is_linear
 from railhunt.analysis.periodic import (
     PeriodicOrbit,
     Shooting,
@@ -170,6 +172,10 @@ def bifurcation_diagram(
         raise ValueError(f"the {where} equilibrium stays stable up to 2000 km/h: no Hopf point")
     path = None if curve is None else EquilibriumPath(model, curve)
     shape, period0 = hopf_mode_shape(model, hopf, path)
+    if is_linear(model):  # no limit cycles: the neutral orbits at the Hopf speed, no fold
+        branch = linear_branch(hopf, period0, shape, model.layout.wheelset_y, max_amplitude)
+        return BifurcationDiagram([branch], hopf, hopf, linear.frequency_hz, hopf, "linear",
+                                  (lo, hi), True, f"{LINEAR_MODEL} ({hopf:.1f} km/h)")  # fmt: skip
     shoot = Shooting(model, symmetric=symmetric and curve is None, dt=dt,
                      dt_speed=kmh_to_ms(max(hi, hopf)),
                      route=None if path is None else path.route,
@@ -302,7 +308,13 @@ def _release(model: Model, shoot: Shooting, speed_kmh: float, amplitude: float,
         return failed, None
     u = np.append(w, vs)
     lin = shoot.linearise(u)
-    return "cycle", (u, shoot.orbit(u, norm, it, lin), lin)
+    orbit = shoot.orbit(u, norm, it, lin)
+    if not orbit.amplitude > 0.5 * size:
+        # Newton slid down to the (unstable) equilibrium, which is a periodic solution of
+        # any period: not the cycle the run settled on.
+        return (f"settles on a cycle of about {size * 1e3:.3g} mm that shooting did not "
+                f"converge on (it slid to the equilibrium)"), None
+    return "cycle", (u, orbit, lin)
 
 
 def seed_ladder(lo: float, hi: float, hopf: float, step_kmh: float = 50.0) -> list[float]:

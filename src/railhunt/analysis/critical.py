@@ -1,12 +1,13 @@
 """Nonlinear critical speed by the paper's dichotomy (excitation type (b)).
 
 Each trial speed is simulated with a single lateral track defect followed by ideal track,
-and judged from the envelope of the leading wheelset's lateral displacement after the
-defect: *stable* (the motion died out) or not (*hunting*, *undecided*, *derailed* or
-*blow-up*; the words are defined in :mod:`railhunt.verdicts`), as
-:mod:`railhunt.analysis.judgement` judges a run. The search starts at 300 km/h, steps by
-10 km/h until the verdict changes, then bisects to 1 km/h; the critical speed is the
-highest stable speed.
+and judged from the envelopes of the lateral displacements of every body that can hunt
+after the defect (every wheelset, then the bogie frames; the worst decides, and the
+trial says which body that was): *stable* (the motion died out) or not
+(*hunting*, *undecided*, *derailed* or *blow-up*; the words are defined in
+:mod:`railhunt.verdicts`), as :mod:`railhunt.analysis.judgement` judges a run. The
+search starts at 300 km/h, steps by 10 km/h until the verdict changes, then bisects to
+1 km/h; the critical speed is the highest stable speed.
 """
 
 from __future__ import annotations
@@ -37,7 +38,9 @@ from railhunt.analysis.judgement import (  # noqa: F401
     judge,
     judge_run,
     run_until_verdict,
+    run_verdict,
     swing_peaks,
+    watched_bodies,
 )
 from railhunt.analysis.search import bracket_and_bisect, check_search
 from railhunt.curve import Curve
@@ -107,20 +110,23 @@ class _Replay:
 class Trial:
     """One simulated speed and its verdict.
 
-    ``limits`` are the validity limits the run reached on straight track
+    Every body that can hunt is judged; the worst verdict decides and ``body`` names the
+    body it came from (the first watched, the leading wheelset, among equals); ``amplitude``
+    is that body's envelope. ``limits`` are the validity limits the run reached on straight track
     (:class:`railhunt.validity.Limit`); a search computes them when they are first read,
     from the trial run again (the same record).
     """
 
     speed_kmh: float
     verdict: str
-    amplitude: float  # final envelope of the leading wheelset's lateral displacement (m)
+    amplitude: float  # final envelope of the deciding body's lateral displacement (m)
     growth_rate: float  # d ln(envelope)/dt over the last window (1/s)
     duration: float  # simulated time (s)
     decided: bool  # False when max_duration ran out and the trend decided
     status: str  # integrator status ("ok", "derailed", ...)
     reason: str = ""  # why an undecided, derailed or blow-up trial is so, in words
     limits: list = _Deferred()  # validity limits the run reached (straight track)
+    body: str = ""  # the body whose verdict decided (the worst of the watched bodies)
 
 
 @dataclass(repr=False)
@@ -161,6 +167,13 @@ class CriticalSpeedResult(ResultDisplay):
         return (list(self.limit.limits) if self.limit_reached else []) + [
             replace(lim, place=f"{lim.place}, {t.speed_kmh:g} km/h") for t in self.trials
             for lim in t.limits]  # fmt: skip
+
+    @property
+    def deciding_body(self) -> str:
+        """The body whose hunting (or undecided, derailed) verdict at the lowest speed not
+        stable set the critical speed; empty when no trial was not stable."""
+        hunting = [t for t in self.trials if t.verdict != STABLE]
+        return min(hunting, key=lambda t: t.speed_kmh).body if hunting else ""
 
     @property
     def first_hunting_kmh(self) -> float:
@@ -207,6 +220,7 @@ class CriticalSpeedResult(ResultDisplay):
     def _summary(self) -> list[Row]:
         rows: list[Row] = [("nonlinear critical speed", self.speed_kmh, "km/h"),
                            ("lowest speed hunting", self.first_hunting_kmh, "km/h"),
+                           ("deciding body", self.deciding_body, ""),
                            ("bracketed", self.bracketed, ""),
                            ("trials", len(self.trials), "")]  # fmt: skip
         if self.curve is not None:
@@ -222,7 +236,8 @@ class CriticalSpeedResult(ResultDisplay):
                 "growth_rate": ([x.growth_rate for x in t], "1/s"),
                 "duration": ([x.duration for x in t], "s"),
                 "decided": ([x.decided for x in t], ""),
-                "status": ([x.status for x in t], "")}  # fmt: skip
+                "status": ([x.status for x in t], ""),
+                "body": ([x.body for x in t], "")}  # fmt: skip
 
 
 
@@ -243,7 +258,7 @@ def run_trial(
     ``route`` and ``reference``: a curve's steady route and its equilibrium (see
     :func:`run_until_verdict`).
     """
-    verdict, t, x, code, amp, rate, decided = run_until_verdict(
+    verdict, t, x, code, amp, rate, decided, body = run_verdict(
         model, speed_kmh, judgement, excitation, method=method, dt=dt, output_dt=output_dt,
         route=route, reference=reference,
     )  # fmt: skip
@@ -253,7 +268,7 @@ def run_trial(
     limits = (_Replay(model, speed_kmh, excitation, judgement, method, dt, output_dt)
               if route is None else [])  # fmt: skip
     return Trial(speed_kmh, verdict, amp, rate, float(t[-1]), decided, status,
-                 trial_reason(verdict, amp, rate, decided, float(t[-1]), status), limits)
+                 trial_reason(verdict, amp, rate, decided, float(t[-1]), status), limits, body)
 
 
 def critical_speed(

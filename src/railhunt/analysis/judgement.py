@@ -1,5 +1,11 @@
-"""How one run is judged: the envelope of the leading wheelset's lateral displacement,
-the verdict words, the early verdict of decay, and running a speed until its verdict.
+"""How one run is judged: the envelopes of the bodies' lateral displacements, the verdict
+words, the early verdict of decay, and running a speed until its verdict.
+
+Every body that can hunt is watched (:func:`watched_bodies`): every wheelset, the leading
+one first, then every bogie frame. Each is judged alone and the worst verdict decides
+(hunting before undecided before stable; among equals the first watched): a rear
+wheelset that hunts while the leading one runs quietly makes the run hunt, and the
+result says which body decided.
 
 The critical-speed search (:func:`railhunt.analysis.critical.critical_speed`), the hunting
 frequency (:func:`railhunt.analysis.frequency.hunting_frequency`) and ``railhunt
@@ -13,9 +19,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from typing import NamedTuple
 
 import numpy as np
 
+from railhunt.analysis.linearity import LINEAR_MODEL, is_linear
 from railhunt.analysis.modes import least_damped_rate
 from railhunt.kernel.integrators import OK, STATUS_NAMES
 from railhunt.kernel.layout import LAYOUT, StateLayout
@@ -107,7 +115,7 @@ def swing_peaks(t: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def judge(
     t: np.ndarray, y: np.ndarray, t_start: float, judgement: Judgement, final: bool = False,
     two_sided: bool = False, linear_rate: float | None = None,
-    equilibrium_rate: float | None = None,
+    equilibrium_rate: float | None = None, linear_model: bool = False,
 ) -> tuple[str | None, float, float]:  # fmt: skip
     """Verdict on a displacement history after ``t_start``.
 
@@ -123,7 +131,9 @@ def judge(
     largest real part of all the eigenvalues there: when it is negative, a motion still
     decaying below
     :data:`LINEAR_RANGE` at ``final`` dies out (it is inside the linear range of a stable
-    equilibrium) and is judged stable.
+    equilibrium) and is judged stable. For a ``linear_model``
+    (:func:`railhunt.analysis.linearity.is_linear`) every amplitude is in the linear range:
+    it has no limit cycle, and a still envelope near its Hopf point is its neutral motion.
 
     Returns
     -------
@@ -136,6 +146,7 @@ def judge(
     growth_rate : float
         Slope of ``ln(envelope)`` over the last ``settle_window`` (1/s); NaN if unknown.
     """
+    linear_range = math.inf if linear_model else LINEAR_RANGE
     mask = t >= t_start
     tt, yy = t[mask], y[mask]
     if tt.size < 3:
@@ -153,16 +164,20 @@ def judge(
         # Inside the linear range an envelope that changes at the linear motion's own rate
         # (or, near the Hopf point, at almost none) is that motion, not a steady cycle.
         near_hopf = (linear_rate is not None and math.isfinite(linear_rate)
-                     and amplitude < LINEAR_RANGE
+                     and amplitude < linear_range
                      and (abs(linear_rate) < judgement.settle_rate
                           or abs(rate - linear_rate) < judgement.settle_rate))  # fmt: skip
-        if abs(rate) < judgement.settle_rate and spread < 0.05 and not near_hopf:
+        # Inside the linear range of a stable equilibrium an envelope that still falls,
+        # however slowly (two modes beating on a rear wheelset), is the motion dying out.
+        falling = (equilibrium_rate is not None and equilibrium_rate < 0
+                   and amplitude < linear_range and rate < 0)  # fmt: skip
+        if abs(rate) < judgement.settle_rate and spread < 0.05 and not (near_hopf or falling):
             return HUNTING, float(pa[win][-1]), rate
     if final:
         if math.isfinite(rate) and rate > 0:
             return HUNTING, amplitude, rate
         linear_decay = (equilibrium_rate is not None and equilibrium_rate < 0
-                        and amplitude < LINEAR_RANGE)  # fmt: skip
+                        and amplitude < linear_range)  # fmt: skip
         if not math.isfinite(rate):  # no oscillation to fit: the trend of max |y| instead
             rate = _drift_rate(tt, yy, judgement.settle_window)
         if math.isfinite(rate) and rate < 0 and linear_decay:
@@ -184,17 +199,72 @@ def _drift_rate(t: np.ndarray, y: np.ndarray, window: float) -> float:
     return math.log(a_now / a_before) / window
 
 
+#: Verdicts from worst to best: the worst of the watched bodies' verdicts decides.
+_WORST_FIRST = (HUNTING, UNDECIDED, None, STABLE)
+
+
+def watched_bodies(layout: StateLayout) -> tuple[tuple[str, int], ...]:
+    """The bodies a run is judged on, as ``(name, index of its lateral displacement)``:
+    every wheelset (the leading one first), then every bogie frame with a lateral
+    coordinate, in the layout's order.
+
+    These are the bodies that hunt: the creep forces that feed a hunting motion act on
+    the wheelsets, and a frame hunts with its wheelsets. A car body rides on them; its
+    slow sway after a defect (0.4 Hz for the paper's car, still 0.1 mm 10 s after the
+    defect at 250 km/h, falling) is given to it and dies out without feeding anything, and
+    a car body that hunts with the bogies makes their wheelsets hunt.
+    """
+    wheelsets = [(name, layout.body_dofs(name)[0]) for name in layout.wheelsets]
+    frames = [(b.name, layout.body_dofs(b.name)[0]) for b in layout.bodies
+              if _is_frame(b) and "y" in b.coordinates]  # fmt: skip
+    return tuple(wheelsets + frames)
+
+
+def _is_frame(body: object) -> bool:
+    kind = getattr(body, "kind", "")
+    return kind == "frame" or (not kind and body.name.startswith("bogie"))  # type: ignore[attr-defined]
+
+
+def judge_bodies(
+    t: np.ndarray, y: np.ndarray, t_start: float, judgement: Judgement, final: bool = False,
+    two_sided: bool = False, linear_rate: float | None = None,
+    equilibrium_rate: float | None = None, linear_model: bool = False,
+) -> tuple[str | None, float, float, int]:  # fmt: skip
+    """:func:`judge` of each column of ``y`` (one per watched body); the worst verdict
+    decides (hunting, then undecided, then still open, then stable; among equals the first
+    column, or for stable the body with the largest envelope).
+
+    Returns
+    -------
+    verdict, amplitude, growth_rate
+        As :func:`judge` gives them, of the deciding body.
+    body : int
+        The column of the deciding body.
+    """
+    results = [judge(t, y[:, k], t_start, judgement, final=final, two_sided=two_sided,
+                     linear_rate=linear_rate, equilibrium_rate=equilibrium_rate,
+                     linear_model=linear_model) for k in range(y.shape[1])]  # fmt: skip
+    for verdict in _WORST_FIRST:
+        ks = [k for k, r in enumerate(results) if r[0] == verdict]
+        if ks:
+            if verdict == STABLE:
+                ks = [max(ks, key=lambda k: results[k][1])]
+            return (*results[ks[0]], ks[0])
+    raise AssertionError("judge gives a verdict word or None")
+
+
 def early_decay(t: np.ndarray, y: np.ndarray, t_start: float, size: float,
                 equilibrium_rate: float | None) -> tuple[float, float] | None:  # fmt: skip
     """The early verdict of decay (see :data:`EARLY_DECAY`) on a record ``y`` after
-    ``t_start`` (s) set off by an excitation of ``size`` (m; 0: unknown).
+    ``t_start`` (s) set off by an excitation of ``size`` (m; 0: unknown). ``y`` may hold
+    one column per watched body: the verdict needs every one of them decayed.
 
     Returns
     -------
     (amplitude, growth_rate) or None
         The envelope of the last second (m) and ``ln`` of its ratio to the second
-        before's, per second (1/s), when the run has clearly decayed; None otherwise
-        (the regular checks of :func:`judge` go on).
+        before's, per second (1/s), of the body that decays last, when the run has clearly
+        decayed; None otherwise (the regular checks of :func:`judge` go on).
     """
     if equilibrium_rate is None or not equilibrium_rate < 0 or t[-1] - 2.0 < t_start:
         return None
@@ -202,9 +272,14 @@ def early_decay(t: np.ndarray, y: np.ndarray, t_start: float, size: float,
     before = (t >= t[-1] - 2.0) & (t < t[-1] - 1.0)
     if not before.any():
         return None
-    a_now, a_before = float(np.max(np.abs(y[now]))), float(np.max(np.abs(y[before])))
+    # One column per watched body (a 1-D record is one body): every one must have decayed.
+    y2 = y.reshape(y.shape[0], -1)
+    a_nows = np.max(np.abs(y2[now]), axis=0)
+    a_befores = np.max(np.abs(y2[before]), axis=0)
     limit = EARLY_DECAY if size <= 0 else min(EARLY_DECAY, 0.5 * size)
-    if a_now < limit and a_now < EARLY_FALL * a_before:
+    if np.all(a_nows < limit) and np.all(a_nows < EARLY_FALL * a_befores):
+        k = int(np.argmax(a_nows))  # the body that decays last
+        a_now, a_before = float(a_nows[k]), float(a_befores[k])
         return a_now, math.log(a_now / a_before) if a_now > 0 else -math.inf
     return None
 
@@ -248,12 +323,16 @@ class RunVerdict:
         Slope of the envelope's logarithm over the last window (1/s); NaN if unknown.
     text : str
         The verdict in words, e.g. ``"hunting: limit cycle of 9.63 mm"``.
+    body : str
+        The body whose motion decided the verdict (the worst of the watched bodies:
+        :func:`watched_bodies`), e.g. ``"wheelset3"``.
     """
 
     verdict: str
     amplitude: float
     growth_rate: float
     text: str
+    body: str = ""
 
     @property
     def short(self) -> str:
@@ -264,44 +343,61 @@ class RunVerdict:
 
 
 def judge_run(result: object, judgement: Judgement | None = None,
-              two_sided: bool = False) -> RunVerdict:  # fmt: skip
-    """Judge a finished run of :func:`railhunt.simulate` by its leading wheelset, after the
-    last wheelset has left the excitation, as the critical-speed search judges a trial.
+              two_sided: bool = False, linear_model: bool = False) -> RunVerdict:  # fmt: skip
+    """Judge a finished run of :func:`railhunt.simulate` by every body that can hunt (every
+    wheelset, then the bogie frames: :func:`watched_bodies`; the worst decides),
+    after the last wheelset has left the excitation, as the critical-speed search judges a
+    trial.
 
     ``two_sided``: judge the swing about the run's last mean position (a run in a curve,
     whose equilibrium is off the track centre) instead of the distance from the centre.
+    ``linear_model``: the run is of a linear model
+    (:func:`railhunt.analysis.linearity.is_linear`), which has no limit cycle: a still
+    envelope is its neutral motion at its Hopf speed ("undecided", in words "neutral").
     """
     judgement = judgement or Judgement()
-    t, y = np.asarray(result.t), np.asarray(result["y_w1"])
+    layout = getattr(result, "layout", LAYOUT)
+    watched = watched_bodies(layout)
+    t, x = np.asarray(result.t), np.asarray(result.x)
+    y = x[:, [i for _, i in watched]] if x.size else np.zeros((0, len(watched)))
     if result.status != "ok":
-        how = ending(result.status, np.asarray(result.x))
-        amp = float(np.max(np.abs(y[-50:]))) if y.size else math.nan
+        how = ending(result.status, x)
+        k = int(np.argmax(np.max(np.abs(y[-50:]), axis=0))) if y.size else 0
+        amp = float(np.max(np.abs(y[-50:, k]))) if y.size else math.nan
+        body = watched[k][0]
         if how == DERAILED:
             return RunVerdict(DERAILED, amp, math.nan, f"derailed: left the track "
-                              f"({result.message})")  # fmt: skip
+                              f"({result.message})", body)  # fmt: skip
         return RunVerdict(BLOW_UP, amp, math.nan, f"blow-up: the integration blew up, not "
-                          f"physics; give a smaller dt ({result.message})")  # fmt: skip
+                          f"physics; give a smaller dt ({result.message})", body)  # fmt: skip
     t_exc = float(result.excitation_end)
     if t[-1] <= t_exc:
         return RunVerdict(UNDECIDED, math.nan, math.nan, "undecided: the run ended before "
-                          "the last wheelset left the excitation")  # fmt: skip
+                          "the last wheelset left the excitation", watched[0][0])  # fmt: skip
     if two_sided:
-        y = y - float(np.median(y[t >= t[-1] - 1.0]))
-    verdict, amp, rate = judge(t, y, t_exc, judgement, two_sided=two_sided)
+        y = y - np.median(y[t >= t[-1] - 1.0], axis=0)
+    verdict, amp, rate, k = judge_bodies(t, y, t_exc, judgement, two_sided=two_sided)
+    body = watched[k][0]
+    where = "" if k == 0 else f" ({body})"
     size = f"{amp * 1e3:.3g} mm"
     if verdict == STABLE:
         return RunVerdict(STABLE, amp, rate, f"stable: the motion died out (below "
-                          f"{judgement.decay_amplitude * 1e3:g} mm at the end)")  # fmt: skip
+                          f"{judgement.decay_amplitude * 1e3:g} mm at the end)", body)  # fmt: skip
+    if verdict == HUNTING and linear_model:
+        return RunVerdict(UNDECIDED, amp, rate, f"neutral: an oscillation of {size}{where} that "
+                          f"neither grows nor decays ({rate:+.2g} 1/s): {LINEAR_MODEL}; this "
+                          "is (or is within the run's resolution of) that speed", body)  # fmt: skip
     if verdict == HUNTING:
-        return RunVerdict(HUNTING, amp, rate, f"hunting: limit cycle of {size}")
+        return RunVerdict(HUNTING, amp, rate, f"hunting: limit cycle of {size}{where}", body)
     if math.isnan(rate):
-        return RunVerdict(UNDECIDED, amp, rate, f"undecided: {size} at the end; give a "
-                          "longer duration")  # fmt: skip
+        return RunVerdict(UNDECIDED, amp, rate, f"undecided: {size}{where} at the end; give a "
+                          "longer duration", body)  # fmt: skip
     if rate < 0:
-        return RunVerdict(UNDECIDED, amp, rate, f"undecided: {size} at the end, still "
-                          f"decaying ({rate:.3g} 1/s); a longer duration decides")  # fmt: skip
-    return RunVerdict(HUNTING, amp, rate, f"hunting: {size} at the end, growing "
-                      f"({rate:+.3g} 1/s)")  # fmt: skip
+        return RunVerdict(UNDECIDED, amp, rate, f"undecided: {size}{where} at the end, still "
+                          f"decaying ({rate:.3g} 1/s); a longer duration decides",
+                          body)  # fmt: skip
+    return RunVerdict(HUNTING, amp, rate, f"hunting: {size}{where} at the end, growing "
+                      f"({rate:+.3g} 1/s)", body)  # fmt: skip
 
 
 def excitation_size(excitation: object, x0: np.ndarray | None = None,
@@ -335,7 +431,68 @@ def run_until_verdict(
     route: np.ndarray | None = None,
     reference: np.ndarray | None = None,
 ) -> tuple[str, np.ndarray, np.ndarray, int, float, float, bool]:
-    """Simulate one speed, chunk by chunk, until the verdict on ``y_w1`` is clear.
+    """Simulate one speed, chunk by chunk, until the verdict on every watched body is clear.
+
+    :func:`run_verdict` without the deciding body (the same run, the same verdict).
+
+    Returns
+    -------
+    verdict, t, x, code, amplitude, growth_rate, decided
+        As :class:`RunOutcome`.
+    """
+    out = run_verdict(model, speed_kmh, judgement, excitation, x0, method, dt, output_dt,
+                      route, reference)  # fmt: skip
+    return out[:7]  # type: ignore[return-value]
+
+
+class RunOutcome(NamedTuple):
+    """A run until its verdict (:func:`run_verdict`).
+
+    Attributes
+    ----------
+    verdict : {"stable", "hunting", "undecided", "derailed", "blow-up"}
+        The verdict words of :mod:`railhunt.verdicts`; a run that stopped early
+        (``code != OK``) is "derailed" or "blow-up" (:func:`~railhunt.verdicts.ending`).
+    t, x : numpy.ndarray
+        The whole record: times (s) and states.
+    code : int
+        Integrator status (:data:`railhunt.kernel.integrators.STATUS_NAMES`).
+    amplitude, growth_rate : float
+        Final envelope of the deciding body's lateral displacement (m) and its log slope
+        (1/s), as :func:`judge` gives them.
+    decided : bool
+        False when ``max_duration`` ran out and the envelope's trend decided.
+    body : str
+        The deciding body (:func:`judge_bodies`), e.g. ``"wheelset1"``.
+    """
+
+    verdict: str
+    t: np.ndarray
+    x: np.ndarray
+    code: int
+    amplitude: float
+    growth_rate: float
+    decided: bool
+    body: str
+
+
+def run_verdict(
+    model: Model,
+    speed_kmh: float,
+    judgement: Judgement,
+    excitation: object = None,
+    x0: np.ndarray | None = None,
+    method: str = "rk4",
+    dt: float = 1e-3,
+    output_dt: float = 2e-3,
+    route: np.ndarray | None = None,
+    reference: np.ndarray | None = None,
+) -> RunOutcome:
+    """Simulate one speed, chunk by chunk, until the verdict on every watched body is clear.
+
+    Every body that can hunt is judged (:func:`watched_bodies`: every wheelset, then the
+    bogie frames), each by its lateral displacement from the equilibrium;
+    the worst verdict decides (:func:`judge_bodies`).
 
     Parameters
     ----------
@@ -356,28 +513,19 @@ def run_until_verdict(
     route : numpy.ndarray, optional
         Track geometry (a curve's steady route); straight track by default.
     reference : numpy.ndarray, optional
-        The equilibrium the motion decays to (the steady-curving state in a curve):
-        ``y_w1`` is judged as its distance from ``reference``, and the run starts there
-        unless ``x0`` is given. Default: the centred state.
+        The equilibrium the motion decays to (the steady-curving state in a curve): each
+        body is judged by its distance from ``reference``, and the run starts there unless
+        ``x0`` is given. Default: the centred state.
 
     Returns
     -------
-    verdict : {"stable", "hunting", "undecided", "derailed", "blow-up"}
-        The verdict words of :mod:`railhunt.verdicts`; a run that stopped early
-        (``code != OK``) is "derailed" or "blow-up" (:func:`~railhunt.verdicts.ending`).
-    t, x : numpy.ndarray
-        The whole record: times (s) and states.
-    code : int
-        Integrator status (:data:`railhunt.kernel.integrators.STATUS_NAMES`).
-    amplitude, growth_rate : float
-        Final envelope of ``y_w1`` (m) and its log slope (1/s), as :func:`judge` gives them.
-    decided : bool
-        False when ``max_duration`` ran out and the envelope's trend decided.
+    RunOutcome
     """
     speed = kmh_to_ms(speed_kmh)
     t_exc = excitation_end_time(model, excitation, speed)
-    y_w1 = model.layout.y_w1
-    y_ref = 0.0 if reference is None else float(reference[y_w1])
+    watched = watched_bodies(model.layout)
+    cols = np.array([i for _, i in watched], dtype=np.int64)
+    y_ref = 0.0 if reference is None else np.asarray(reference, dtype=float)[cols]
     if x0 is None:
         x0 = np.zeros(model.layout.n_state) if reference is None else reference
     size = excitation_size(excitation, x0, reference, model.layout)
@@ -388,9 +536,10 @@ def run_until_verdict(
     linear_rate, equilibrium_rate = least_damped_rate(model, speed,
                                                       None if reference is None else x0,
                                                       route)  # fmt: skip
+    linear = is_linear(model)
     ts: list[np.ndarray] = []
     xs: list[np.ndarray] = []
-    ys: list[np.ndarray] = []  # y_w1 from the reference, piece by piece
+    ys: list[np.ndarray] = []  # the watched bodies from the reference, piece by piece
     first = True
     while True:
         # After the first chunk (the excitation), an RK4 chunk is integrated in pieces,
@@ -407,7 +556,7 @@ def run_until_verdict(
             if not ts or t.size > 1:  # a piece shorter than the output step stores nothing
                 ts.append(t if not ts else t[1:])
                 xs.append(x if not xs else x[1:])
-                ys.append(xs[-1][:, y_w1] - y_ref)
+                ys.append(xs[-1][:, cols] - y_ref)
             t0, x_start = float(t[-1]), x[-1].copy()
             if code != OK or k == len(pieces) - 1:
                 break
@@ -417,20 +566,32 @@ def run_until_verdict(
             early = early_decay(np.concatenate(ts[-n:]), np.concatenate(ys[-n:]), t_exc,
                                 size, equilibrium_rate)  # fmt: skip
             if early is not None:
-                return STABLE, np.concatenate(ts), np.concatenate(xs), code, *early, True
+                return RunOutcome(STABLE, np.concatenate(ts), np.concatenate(xs), code, *early,
+                                  True, _last_to_decay(ys, watched))  # fmt: skip
         tt, y = np.concatenate(ts), np.concatenate(ys)
         if code != OK:
             xx = np.concatenate(xs)
             how = ending(STATUS_NAMES[code], xx)
-            return how, tt, xx, code, float(np.max(np.abs(y[-50:]))), math.nan, True
+            tail = np.max(np.abs(y[-50:]), axis=0)
+            kk = int(np.argmax(tail))
+            return RunOutcome(how, tt, xx, code, float(tail[kk]), math.nan, True,
+                              watched[kk][0])  # fmt: skip
         final = tt[-1] - t_exc >= judgement.max_duration - 1e-9
-        verdict, amp, rate = judge(tt, y, t_exc, judgement, final=final,
-                                   two_sided=reference is not None,
-                                   linear_rate=linear_rate,
-                                   equilibrium_rate=equilibrium_rate)  # fmt: skip
+        verdict, amp, rate, kk = judge_bodies(tt, y, t_exc, judgement, final=final,
+                                              two_sided=reference is not None,
+                                              linear_rate=linear_rate,
+                                              equilibrium_rate=equilibrium_rate,
+                                              linear_model=linear)  # fmt: skip
         if verdict is not None:
-            return verdict, tt, np.concatenate(xs), code, amp, rate, not final
+            return RunOutcome(verdict, tt, np.concatenate(xs), code, amp, rate, not final,
+                              watched[kk][0])  # fmt: skip
         early = early_decay(tt, y, t_exc, size, equilibrium_rate)
         if early is not None:
-            return STABLE, tt, np.concatenate(xs), code, early[0], early[1], True
+            return RunOutcome(STABLE, tt, np.concatenate(xs), code, early[0], early[1], True,
+                              _last_to_decay(ys, watched))  # fmt: skip
         duration = judgement.chunk
+
+
+def _last_to_decay(ys: list[np.ndarray], watched: tuple[tuple[str, int], ...]) -> str:
+    """The watched body with the largest motion in the last piece of a record."""
+    return watched[int(np.argmax(np.max(np.abs(ys[-1]), axis=0)))][0]

@@ -160,7 +160,7 @@ def _parse_set(
     ctx: click.Context, param: click.Parameter, items: tuple[str, ...]
 ) -> dict[str, float]:
     """Option callback of ``--set``: ``NAME=VALUE`` items to a dict of checked SI floats."""
-    from railhunt.vehicle import PARAMETERS, UnknownParameterError, validate_value
+    from railhunt.vehicle import UnknownParameterError, validate_value
 
     # --vehicle is eager (processed first): another layout's parameters are checked by
     # Vehicle.replace when the vehicle is built (build_vehicle), against its own table.
@@ -179,7 +179,7 @@ def _parse_set(
             raise click.BadParameter(
                 f"{name}={text}: {text!r} is not a number (give the SI value, e.g. 1.5e5)"
             ) from None
-        if other_vehicle and name not in PARAMETERS:
+        if other_vehicle:  # its own table (and its uses) check it, in build_vehicle
             changes[name] = value
             continue
         try:
@@ -213,6 +213,11 @@ def _vehicle_source(
     )
 
 
+def _store_allowed(ctx: click.Context, param: click.Parameter, names: tuple[str, ...]) -> None:
+    """``--allow NAME``: kept for :func:`build_vehicle` (not an argument of the commands)."""
+    ctx.meta["railhunt.allow"] = tuple(n.strip() for n in names if n.strip())
+
+
 def vehicle_options(func: Callable[..., Any]) -> Callable[..., Any]:
     """Add ``--vehicle FILE|NAME`` and repeatable ``--set NAME=VALUE`` to a command.
 
@@ -227,6 +232,16 @@ def vehicle_options(func: Callable[..., Any]) -> Callable[..., Any]:
         callback=_parse_set,
         help="Change one vehicle parameter, in SI units (repeatable), e.g. --set C_d1=150e3 "
         "(yaw damper first-stage damping, N*s/m). 'railhunt parameters' lists the names.",
+    )(func)
+    func = click.option(
+        "--allow",
+        metavar="NAME",
+        multiple=True,
+        expose_value=False,
+        callback=_store_allowed,
+        help="Take parameter NAME's value (of the file or of --set) even outside the range "
+        "its use makes plausible, on purpose: a scale model, a study beyond the usual "
+        "(repeatable; as allow = true in a vehicle file). Its rules of sign still hold.",
     )(func)
     func = click.option(
         "--vehicle",
@@ -270,10 +285,25 @@ def build_vehicle(vehicle_file: Path | str | None, sets: dict[str, float]) -> Ve
             vehicle = Vehicle.shipped(vehicle_file)
         else:
             vehicle = load_vehicle(vehicle_file)
+    ctx = click.get_current_context(silent=True)
+    allowed = ctx.meta.get("railhunt.allow", ()) if ctx is not None else ()
+    if allowed:
+        with user_input("--allow: "):
+            vehicle = vehicle.allowing(*allowed)
     if sets:
+        import warnings
+
+        from railhunt.vehicle.errors import DerivedOverrideWarning
+
         given = ", ".join(f"{k}={v:g}" for k, v in sets.items())
-        with user_input(f"--set {given}: "):
+        with user_input(f"--set {given}: "), warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", DerivedOverrideWarning)
             vehicle = vehicle.replace(name=f"{vehicle.name} with {given}", **sets)
+        for w in caught:  # a derived parameter set directly: said once, as a note
+            if issubclass(w.category, DerivedOverrideWarning):
+                click.echo(f"railhunt: note: {w.message}", err=True)
+            else:
+                warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     if vehicle.contact is not None:
         # The profiles of [contact] must give a geometry that fits the vehicle (the wheels
         # fit the track, r0 is the centred rolling radius): checked once, here, before

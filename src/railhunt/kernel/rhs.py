@@ -33,8 +33,8 @@ from railhunt.kernel.track import alignment
 from railhunt.kernel.wheelset import wheelset_contact, wheelset_forces
 
 __all__ = [
-    "curve_geometry", "curve_offsets", "derived", "jacobian", "rhs", "wheel_loads",
-    "wheelset_forces", "wheelset_track_forces",
+    "curve_geometry", "curve_offsets", "derived", "jacobian", "rhs", "track_stop_force",
+    "wheel_loads", "wheelset_forces", "wheelset_track_forces",
 ]  # fmt: skip
 
 
@@ -98,6 +98,25 @@ def wheelset_track_forces(
                                         x[nq + ip], x[nq + ip] + track_rate, v, wr,
                                         q_l, q_r)  # fmt: skip
     return fy, mz, f_l, f_r, q_l, q_r
+
+
+@njit(cache=True, **NO_REFCOUNT)
+def track_stop_force(k: int, t: float, x: np.ndarray, v: float, s: SystemArrays) -> float:
+    """Force (N) of stop ``k``, a stop to the track (a flange: ``s.stop_wheelset[k] >= 0``),
+    at state ``x`` and time ``t``: the law of :func:`~railhunt.kernel.bumpstop.
+    bump_stop_force` at the deformation :func:`rhs` gives it, ``stop_rows[k] @ q`` minus
+    the rails' lateral alignment under its wheelset. Positive when the deformation is; the
+    stop pushes the wheelset back with ``-f`` times its row, and so the wheelset presses on
+    its rails with ``f * stop_rows[k, y]`` laterally (+ left).
+    """
+    nq = s.linear.shape[0]
+    dist = 0.0
+    for i in range(nq):
+        dist += s.stop_rows[k, i] * x[i]
+    j = s.stop_wheelset[k]
+    dist -= alignment(v * t - s.wheelset_delay[j], s.track, s.track_samples)[0]
+    return bump_stop_force(dist, s.stop[k, StopParam.GAP], s.stop[k, StopParam.K1],
+                           s.stop[k, StopParam.K3])  # fmt: skip
 
 
 @njit(cache=True, **NO_REFCOUNT)
@@ -294,9 +313,11 @@ def derived(t: np.ndarray, x: np.ndarray, v: float, s: SystemArrays,
     """Wheel/rail forces and accelerations along a run (see :mod:`railhunt.channels`).
 
     Returns an array with one row per time and, for ``n`` wheelsets, the columns: ``ΣY``
-    of each wheelset (``-F_y``: the lateral force it puts on the track, N, + left); the
-    guiding force ``Y`` of each left wheel, then of each right wheel (the force of the
-    wheel on its rail, N, positive outward from the track centre); the wheel loads ``Q``
+    of each wheelset (``-F_y``: the lateral force it puts on the track, N, + left, its
+    flanges' forces included: :func:`track_stop_force`); the guiding force ``Y`` of each
+    left wheel, then of each right wheel (the force of the wheel on its rail, N, positive
+    outward from the track centre; a flange's force on the wheel whose flange touches its
+    rail: the left one when the wheelset presses toward +y); the wheel loads ``Q``
     of the left wheels, then of the right wheels (N); then ``d(rate)/dt`` of each
     coordinate in ``acc_index`` (m/s^2 or rad/s^2). With ``acc_index`` empty the whole
     right-hand side is not evaluated (the wheel/rail forces alone: half the cost).
@@ -317,6 +338,18 @@ def derived(t: np.ndarray, x: np.ndarray, v: float, s: SystemArrays,
             res[i, 2 * nw + j] = f_r
             res[i, 3 * nw + j] = q_l
             res[i, 4 * nw + j] = q_r
+        # Flanges (stops to the track): the force of the wheelset on its rails belongs in
+        # its guiding forces, on the wheel whose flange is in contact.
+        for k in range(s.stop_wheelset.shape[0]):
+            j = s.stop_wheelset[k]
+            if j < 0:
+                continue
+            f = track_stop_force(k, t[i], xi, v, s) * s.stop_rows[k, s.wheelsets[j, 0]]
+            res[i, j] += f
+            if f > 0.0:
+                res[i, nw + j] += f
+            else:
+                res[i, 2 * nw + j] -= f
         for k in range(acc_index.shape[0]):
             res[i, 5 * nw + k] = out[nq + acc_index[k]]
     return res

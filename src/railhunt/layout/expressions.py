@@ -62,9 +62,11 @@ class Expression:
             raise ExpressionError(f"{source!r} is not a number or an expression")
         self.source: str | float = source if isinstance(source, str) else float(source)
         tree = _parse(source) if isinstance(source, str) else ast.Constant(float(source))
+        functions = {id(n.func) for n in ast.walk(tree) if isinstance(n, ast.Call)}
         self.names: frozenset[str] = frozenset(
-            n.id for n in ast.walk(tree) if isinstance(n, ast.Name) and n.id not in _CONSTANTS
-        )
+            n.id for n in ast.walk(tree) if isinstance(n, ast.Name)
+            and n.id not in _CONSTANTS and id(n) not in functions
+        )  # the parameters it names: not the functions it calls (sqrt, abs, min, max)
         self._fn = _compile(tree)
         self.terms = _terms(tree)
 

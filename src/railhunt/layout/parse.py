@@ -228,6 +228,11 @@ def _elements(table: object, bodies: set[str], where: str) -> list[ElementSpec]:
         mirror = entry.get("mirror", False)
         if not isinstance(mirror, bool):
             raise LayoutError(f"{label}: mirror must be true or false")
+        if mirror and _on_centre_line(at) and _on_centre_line(at_b):
+            raise LayoutError(f"{label}: mirror = true at y = 0 would put the element twice in "
+                              "the same place (twice its stiffness or damping): give its "
+                              "whole value once without mirror, or its points' y (the left "
+                              "one; the mirror is at -y)")  # fmt: skip
         copies = [(name + (" left" if mirror else ""), at, at_b)]
         if mirror:
             copies.append((name + " right", _mirrored(at), _mirrored(at_b)))
@@ -237,7 +242,7 @@ def _elements(table: object, bodies: set[str], where: str) -> list[ElementSpec]:
                                   "its own name")  # fmt: skip
             seen.add(nm)
             out.append(ElementSpec(name=nm, kind=kind, body_a=a, body_b=b, axis=axis, at=p,
-                                   at_b=pb, law=law))  # fmt: skip
+                                   at_b=pb, law=law, mirrored=mirror))  # fmt: skip
     return out
 
 
@@ -246,6 +251,11 @@ def _point(value: object, where: str) -> tuple[Expression, Expression, Expressio
         raise LayoutError(f"{where}: must be [x, y, z] (m, vehicle coordinates)")
     x, y, z = (_expr(v, where) for v in value)
     return (x, y, z)
+
+
+def _on_centre_line(p: tuple[Expression, Expression, Expression]) -> bool:
+    """Whether the point's y is the number 0 (an expression is checked with its values)."""
+    return p[1].is_constant and p[1]({}) == 0.0
 
 
 def _mirrored(p: tuple[Expression, Expression, Expression]) -> tuple[Expression, ...]:

@@ -9,7 +9,7 @@ numbers, never the file. Everything here is immutable and hashable.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from typing import TYPE_CHECKING
 
 from railhunt.layout.expressions import Expression
@@ -117,6 +117,8 @@ class ElementSpec:
         z above the top of rail); the same point unless ``at_b`` was given.
     law : tuple of (str, Expression)
         The law's values (``stiffness``, ``damping``, ...).
+    mirrored : bool
+        One of a pair made by ``mirror = true`` (its points' y must not be 0).
     """
 
     name: str
@@ -127,6 +129,7 @@ class ElementSpec:
     at: tuple[Expression, Expression, Expression]
     at_b: tuple[Expression, Expression, Expression]
     law: tuple[tuple[str, Expression], ...]
+    mirrored: bool = field(default=False, compare=False)
 
     def value(self, key: str) -> Expression:
         """The law's value ``key``."""
@@ -167,6 +170,17 @@ class LayoutSpec:
         Where each parameter's value comes from.
     citation : str
         Where the vehicle comes from (``[vehicle] source``: one line).
+    formulas : tuple of (str, str)
+        The derived parameters and their expressions of other parameters, as the file
+        writes them (``("f11", "GPIAB / phi_vj")``): each follows its inputs wherever they
+        change (``replace``, ``--set``, sweeps, studies).
+    allowed : frozenset of str
+        The parameters whose file says ``allow = true``: they (and every value computed
+        from them) may lie outside the ranges their uses make plausible
+        (:mod:`railhunt.quantities.meanings`); the rules of sign still hold.
+    inferred : frozenset of str
+        The parameters whose rule is the rule of their use in the layout (their file states
+        none): a file written from the layout leaves it out, as its source did.
     """
 
     bodies: tuple[BodySpec, ...]
@@ -178,6 +192,30 @@ class LayoutSpec:
     parameters: tuple[ParameterSpec, ...] = ()
     sources: tuple[tuple[str, str], ...] = field(default=(), compare=False)
     citation: str = field(default="", compare=False)
+    formulas: tuple[tuple[str, str], ...] = ()
+    allowed: frozenset[str] = frozenset()
+    inferred: frozenset[str] = frozenset()
+
+    def __hash__(self) -> int:
+        # Hashed once and kept: the layout is the key of the assembly's and the checks'
+        # caches, hashed at every vehicle built from it (a sweep builds one per point).
+        h = self.__dict__.get("_hash")
+        if h is None:
+            h = hash(tuple(getattr(self, f.name) for f in fields(self) if f.compare))
+            object.__setattr__(self, "_hash", h)
+        return h
+
+    def __getstate__(self) -> dict:
+        # What is kept per process (the hash of its strings differs between processes,
+        # e.g. Dask workers) is not pickled.
+        return {k: v for k, v in self.__dict__.items() if not k.startswith("_")}
+
+    def formula(self, name: str) -> str | None:
+        """The expression a derived parameter is computed from (None: an independent one)."""
+        for n, text in self.formulas:
+            if n == name:
+                return text
+        return None
 
     @property
     def specs(self) -> dict[str, ParameterSpec]:

@@ -1,6 +1,7 @@
 """A complete layout file from a vehicle (:meth:`railhunt.vehicle.Vehicle.to_toml`).
 
-Every parameter in table form (value, unit, meaning, source, rule), the ``[wheel_rail]``
+Every parameter in table form (value, unit, meaning, source, rule; a derived parameter's
+value is its formula, and ``allow = true`` is kept), the ``[wheel_rail]``
 table, every body and every element (mirrored elements written out as two), so that the
 file loads back to the same numbers, bit for bit: values are written with ``repr`` and
 expressions as they were read.
@@ -45,16 +46,20 @@ def layout_toml(vehicle: Any) -> str:
     ]
     if layout.citation:
         lines.append(f"source = {toml_string(layout.citation)}")
+    formulas = dict(layout.formulas)
     for spec in layout.parameters:
-        lines += ["", f"[parameters.{spec.name}]",
-                  f"value = {float(vehicle.values[spec.name])!r}"]  # fmt: skip
+        value = (toml_string(formulas[spec.name]) if spec.name in formulas
+                 else repr(float(vehicle.values[spec.name])))  # fmt: skip
+        lines += ["", f"[parameters.{spec.name}]", f"value = {value}"]
+        if spec.name in layout.allowed:
+            lines.append("allow = true")
         if spec.unit:
             lines.append(f"unit = {toml_string(spec.unit)}")
         if spec.meaning:
             lines.append(f"meaning = {toml_string(spec.meaning)}")
         if sources.get(spec.name):
             lines.append(f"source = {toml_string(sources[spec.name])}")
-        name = rule_name(spec.rule)
+        name = "finite" if spec.name in layout.inferred else rule_name(spec.rule)
         if name is not None:
             if name != "finite":
                 lines.append(f"rule = {toml_string(name)}")

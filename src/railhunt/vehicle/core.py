@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, Any, Self
 
 from railhunt.vehicle.contact import ContactSpec
 from railhunt.vehicle.errors import (
+    DerivedOverrideWarning,
     DerivedParameterError,
     UnknownParameterError,
 )
@@ -87,12 +88,18 @@ class Vehicle:
             layout = _READERS["paper_layout"]()
         given = {**(values or {}), **parameters}
         specs = layout.specs
+        if layout.formulas:
+            layout, given = _follow(layout, given)
+            specs = layout.specs
         if values is None:
             missing = [n for n, s in specs.items() if n not in given and s.default is None]
             if missing:
                 raise TypeError(f"Vehicle() missing {len(missing)} required parameter(s): "
                                 f"{', '.join(missing)}")  # fmt: skip
         checked = validate_with(given, specs, layout.consistency)
+        from railhunt.layout.checks import check_values
+
+        check_values(layout, checked)
         for key, value in (("name", name), ("description", description), ("contact", contact),
                            ("layout", layout), ("values", checked)):  # fmt: skip
             object.__setattr__(self, key, value)
@@ -161,6 +168,23 @@ class Vehicle:
 
     load = from_toml
 
+    def allowing(self, *names: str) -> Self:
+        """This vehicle, with the parameters ``names`` allowed outside the ranges their uses
+        in the layout make plausible (as ``allow = true`` in a file: a scale model, a study
+        on purpose; the rules of sign still hold): ``vehicle.allowing("W").replace(W=100)``.
+
+        Raises
+        ------
+        UnknownParameterError
+            A name is not a parameter of the vehicle.
+        """
+        for name in names:
+            if name not in self.values:
+                raise UnknownParameterError(name, None, known=tuple(self.values))
+        from railhunt.layout.checks import allow
+
+        return self.replace(layout=allow(self.layout, set(names)))
+
     def replace(self, **changes: Any) -> Self:
         """Return a validated copy with some parameters (or name/description) changed.
 
@@ -173,7 +197,9 @@ class Vehicle:
         Returns
         -------
         Vehicle
-            A new vehicle; ``self`` is unchanged.
+            A new vehicle; ``self`` is unchanged. A derived parameter (given in its file as
+            an expression of others, ``f11 = "GPIAB / phi_vj"``) follows its inputs; set
+            directly, it no longer does (a :class:`DerivedOverrideWarning` says so).
 
         Raises
         ------
@@ -184,15 +210,24 @@ class Vehicle:
         ParameterError
             If a new value, or the resulting set, breaks a rule.
         """
+        ident = {k: changes.pop(k) for k in list(changes) if k in _IDENTITY}
         for key, value in changes.items():
-            if key in _IDENTITY:
-                continue
             if key in self.values:
                 continue
             if key in DERIVED:
                 raise DerivedParameterError(key, value)
             raise UnknownParameterError(key, value, known=tuple(self.values))
-        return dataclasses.replace(self, **changes)
+        layout = ident.get("layout", self.layout)
+        values = ident.get("values")
+        if values is None:
+            # A derived parameter (a formula of others) follows its inputs: its old value is
+            # not carried over, unless it is changed itself (an override, said so).
+            derived = dict(layout.formulas)
+            values = {k: v for k, v in self.values.items() if k not in derived}
+        return type(self)(name=ident.get("name", self.name),
+                          description=ident.get("description", self.description),
+                          contact=ident.get("contact", self.contact), layout=layout,
+                          values=values, **changes)  # fmt: skip
 
     # -- derived quantities -------------------------------------------------------------
 
@@ -280,7 +315,8 @@ class Vehicle:
         return out
 
     def parameter_table(self, include_derived: bool = False) -> list[tuple[str, float, str, str]]:
-        """Rows ``(name, value, unit, meaning)`` for reports, in the layout's order.
+        """Rows ``(name, value, unit, meaning)`` for reports, in the layout's order; a
+        derived parameter's meaning ends with its formula (``(= GPIAB / 0.60252)``).
 
         Parameters
         ----------
@@ -292,7 +328,9 @@ class Vehicle:
         list of tuple (str, float, str, str)
         """
         specs = self.layout.specs
-        rows = [(n, v, specs[n].unit, specs[n].meaning) for n, v in self.values.items()]
+        formulas = dict(self.layout.formulas)
+        rows = [(n, v, specs[n].unit, specs[n].meaning if n not in formulas else
+                 f"{specs[n].meaning} (= {formulas[n]})".lstrip()) for n, v in self.values.items()]
         if include_derived:
             values = self.derived()
             for spec in DERIVED.values():
@@ -345,3 +383,30 @@ def _rebuild(name: str, description: str, contact: ContactSpec | None, layout: A
     return Vehicle(name=name, description=description, contact=contact, layout=layout,
                    values=values)
 
+
+
+def _follow(layout: "LayoutSpec", given: dict[str, Any]) -> tuple["LayoutSpec", dict[str, Any]]:
+    """The derived parameters of ``layout`` computed from ``given``; those given another
+    value are overridden: they lose their formula (in the returned layout), and a
+    :class:`DerivedOverrideWarning` names them."""
+    import warnings
+
+    from railhunt.layout.params import follow_formulas
+
+    values, overridden = follow_formulas(layout.formulas, layout.specs, given)
+    if not overridden:
+        return layout, values
+    texts = dict(layout.formulas)
+    for name in overridden:
+        inputs = ", ".join(sorted(_inputs(texts[name])))
+        warnings.warn(f"{name} is derived in the layout ({name} = {texts[name]!r}): set "
+                      f"directly, it no longer follows {inputs}; change {inputs} instead to "
+                      "keep the formula", DerivedOverrideWarning, stacklevel=4)  # fmt: skip
+    formulas = tuple((n, t) for n, t in layout.formulas if n not in overridden)
+    return dataclasses.replace(layout, formulas=formulas), values
+
+
+def _inputs(text: str) -> frozenset[str]:
+    from railhunt.layout.params import formula
+
+    return formula(text).names

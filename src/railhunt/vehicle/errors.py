@@ -5,9 +5,10 @@ parameter's name, the rejected value, the broken rule and the unit, and pickles 
 them (so it crosses process boundaries, e.g. from a Dask worker).
 """
 
-from railhunt.vehicle.formatting import with_unit
+from railhunt.quantities.formatting import with_unit
 
 __all__ = [
+    "DerivedOverrideWarning",
     "DerivedParameterError",
     "MissingParametersError",
     "ParameterError",
@@ -153,3 +154,8 @@ class DerivedParameterError(ParameterError):
 
 class VehicleFileError(ValueError):
     """A vehicle file that is not valid TOML or has the wrong structure."""
+
+
+class DerivedOverrideWarning(UserWarning):
+    """A derived parameter (an expression of others in its layout file) was given a value
+    of its own: it no longer follows the parameters it was computed from."""

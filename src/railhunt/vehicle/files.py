@@ -16,6 +16,7 @@ from importlib import resources
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from railhunt.quantities.units import UnitError, parse_unit, same_dimension, to_si
 from railhunt.vehicle.contact import ContactSpec
 from railhunt.vehicle.core import Vehicle, set_file_readers
 from railhunt.vehicle.errors import (
@@ -46,7 +47,7 @@ _TABLE_KEYS = frozenset({"value", "unit", "meaning", "source"})
 # A layout file's parameter tables also state the rule (read by railhunt.layout.params;
 # a file of the paper's parameters may carry them: the paper's own rules apply).
 _RULE_KEYS = frozenset({"rule", "min", "max", "above", "below", "reason", "default",
-                        "greater_than"})  # fmt: skip
+                        "greater_than", "allow"})  # fmt: skip
 _VEHICLE_KEYS = frozenset({"name", "description", "base", "gravity", "source"})
 _LAYOUT_SECTIONS = frozenset({"body", "element", "wheel_rail"})
 _CONTACT_KEYS = frozenset({"wheel", "rail", "rail_inclination", "gauge", "back_to_back",
@@ -108,7 +109,12 @@ def _layout_from_data(data: dict[str, Any], where: str) -> tuple["LayoutSpec", d
                           "taken by the vehicle's own attributes: rename them")  # fmt: skip
     layout = dataclasses.replace(layout, consistency=table.consistency,
                                  parameters=tuple(table.specs.values()),
-                                 sources=tuple(table.sources.items()))  # fmt: skip
+                                 sources=tuple(table.sources.items()),
+                                 formulas=table.formulas, allowed=table.allowed)  # fmt: skip
+    # Each parameter gets the rule and unit of its use (unless its file states its rule).
+    from railhunt.layout.checks import infer_parameters
+
+    layout = infer_parameters(layout, table.stated)
     return layout, table.values
 
 
@@ -116,7 +122,7 @@ _RESERVED = frozenset({"name", "description", "contact", "layout", "values", "v_
                        "gravity", "blowoff_force", "length",
                        "assembly", "parameters", "source", "replace", "derived", "as_dict",
                        "to_toml", "shipped", "load", "from_toml", "paper2019",
-                       "parameter_table"})  # fmt: skip
+                       "parameter_table", "allowing"})  # fmt: skip
 
 
 @functools.cache
@@ -220,19 +226,25 @@ def load_vehicle(path: str | os.PathLike[str]) -> Vehicle:
         (or a subclass) for unknown, missing, non-numeric, mis-united, out-of-range or
         inconsistent parameters; ``str(error)`` starts with the file path.
     """
-    path = Path(path)
+    return _load_file(Path(path), ())
+
+
+def _load_file(path: Path, chain: tuple[Path, ...]) -> Vehicle:
+    """:func:`load_vehicle` of a file reached through the ``base`` files of ``chain``."""
     try:
         text = path.read_text(encoding="utf-8-sig")  # a byte-order mark is skipped
     except UnicodeDecodeError as exc:
         raise VehicleFileError(f"{path}: not a UTF-8 text file") from exc
-    return _vehicle_from_data(_parse_toml(text, str(path)), str(path), default_name=path.stem)
+    return _vehicle_from_data(_parse_toml(text, str(path)), str(path), default_name=path.stem,
+                              chain=(*chain, path.resolve()))  # fmt: skip
 
 
 def _vehicle_from_data(
-    data: dict[str, Any], where: str, *, default_name: str, depth: int = 0
+    data: dict[str, Any], where: str, *, default_name: str, depth: int = 0,
+    chain: tuple[Path, ...] = (),
 ) -> Vehicle:
     try:
-        vehicle = _build_vehicle(data, where, default_name, depth)
+        vehicle = _build_vehicle(data, where, default_name, depth, chain)
         vehicle.assembly  # noqa: B018  (a file's layout is checked when it is read)
         return vehicle
     except ParameterError as exc:
@@ -241,7 +253,8 @@ def _vehicle_from_data(
         raise
 
 
-def _build_vehicle(data: dict[str, Any], where: str, default_name: str, depth: int) -> Vehicle:
+def _build_vehicle(data: dict[str, Any], where: str, default_name: str, depth: int,
+                   chain: tuple[Path, ...] = ()) -> Vehicle:  # fmt: skip
     extra = set(data) - {"vehicle", "parameters", "contact"} - _LAYOUT_SECTIONS
     if extra:
         raise VehicleFileError(
@@ -281,8 +294,16 @@ def _build_vehicle(data: dict[str, Any], where: str, default_name: str, depth: i
             base_name in shipped_vehicles() and load_shipped(base_name).layout == paper_layout()):
         # Another layout (or a file): its own parameter table. A vehicle of the paper's
         # layout takes the path below, as before (derived cross-checks included).
-        return _from_base(data, meta, table, contact, where, default_name)
+        return _from_base(data, meta, table, contact, where, default_name, chain)
 
+    if base_name is None and not table and contact is None:
+        what = "is empty" if not data else "has no vehicle in it"
+        raise VehicleFileError(
+            f"{where}: the file {what}: a vehicle file either describes a layout "
+            "([parameters], [[body]], [[element]], [wheel_rail]: 'Your own vehicle layout' in "
+            "the documentation) or "
+            "changes another vehicle ([vehicle] base = one of "
+            f"{', '.join(shipped_vehicles())}, or a file, and the [parameters] to change)")
     given: dict[str, float] = {}
     stated: dict[str, float] = {}
     for name, entry in table.items():
@@ -328,17 +349,37 @@ def _build_vehicle(data: dict[str, Any], where: str, default_name: str, depth: i
                 meaning=spec.meaning,
             )
 
+    layout = paper_layout()
+    allowed = _allowed(table, where)
+    if allowed:
+        from railhunt.layout.checks import allow
+
+        layout = allow(layout, allowed)
     return Vehicle(
         name=meta.get("name", default_name),
         description=meta.get("description", ""),
         contact=contact,
-        layout=paper_layout(),
+        layout=layout,
         values=values,
     )
 
 
+def _allowed(table: dict[str, Any], where: str) -> frozenset[str]:
+    """The parameters a file's tables give ``allow = true``."""
+    out = set()
+    for name, entry in table.items():
+        if isinstance(entry, dict) and "allow" in entry:
+            if not isinstance(entry["allow"], bool):
+                raise VehicleFileError(f"{where}: [parameters.{name}] allow must be true or "
+                                       "false")  # fmt: skip
+            if entry["allow"]:
+                out.add(name)
+    return frozenset(out)
+
+
 def _from_base(data: dict[str, Any], meta: dict[str, Any], table: dict[str, Any],
-               contact: ContactSpec | None, where: str, default_name: str) -> Vehicle:  # fmt: skip
+               contact: ContactSpec | None, where: str, default_name: str,
+               chain: tuple[Path, ...] = ()) -> Vehicle:  # fmt: skip
     """A file that changes the parameters of a shipped vehicle or of another file."""
     base_name = meta["base"]
     if base_name in shipped_vehicles():
@@ -351,7 +392,13 @@ def _from_base(data: dict[str, Any], meta: dict[str, Any], table: dict[str, Any]
             raise VehicleFileError(f"{where}: base = {base_name!r} is neither a shipped vehicle "
                                    f"({', '.join(shipped_vehicles())}) nor an existing "
                                    "file")  # fmt: skip
-        base = load_vehicle(path)
+        if path.resolve() in chain:
+            names = " -> ".join(str(p) for p in (*chain[chain.index(path.resolve()):],
+                                                 path.resolve()))  # fmt: skip
+            raise VehicleFileError(f"{where}: base = {base_name!r} starts a circle of base files "
+                                   f"({names}): a file cannot start from itself; start one of "
+                                   "them from a shipped vehicle or a complete layout")  # fmt: skip
+        base = _load_file(path, chain)
     specs = base.layout.specs
     changes: dict[str, float] = {}
     for name, entry in table.items():
@@ -359,6 +406,9 @@ def _from_base(data: dict[str, Any], meta: dict[str, Any], table: dict[str, Any]
             raise UnknownParameterError(name, entry, known=tuple(specs))
         spec = specs[name]
         changes[name] = _read_entry(name, entry, spec.unit, spec.meaning)
+    allowed = _allowed(table, where)
+    if allowed:
+        base = base.allowing(*allowed)
     return base.replace(name=meta.get("name", default_name),
                         description=meta.get("description", base.description),
                         contact=contact if contact is not None else base.contact,
@@ -415,17 +465,31 @@ def _read_entry(name: str, entry: object, unit: str, meaning: str) -> float:
                 message=f"[parameters.{name}]: missing 'value' (SI value in {unit})",
             )
         given_unit = entry.get("unit")
+        scale = 1.0
         if given_unit is not None and given_unit != unit:
-            raise ParameterError(
-                name,
-                entry["value"],
-                f"given in {unit}",
-                unit,
-                message=f"{name}: unit {given_unit!r} does not match the expected unit "
-                f"{unit!r}; vehicle files use SI units: give the value in {unit}",
-            )
+            scale = _unit_scale(name, entry["value"], given_unit, unit)
         entry = entry["value"]
+        if scale != 1.0:
+            return to_si(as_float(name, entry, given_unit, meaning), scale)
     return as_float(name, entry, unit, meaning)
+
+
+def _unit_scale(name: str, value: object, given: object, unit: str) -> float:
+    """The factor from a stated unit to the parameter's SI ``unit`` (``"kN*s/m"`` for
+    N*s/m: 1e3); a unit of another dimension, or one railhunt does not know, is refused."""
+    message = (f"{name}: unit {given!r} does not match the expected unit {unit!r}; give the "
+               f"value in {unit}, or in a unit of the same dimension (such as kN/m for "
+               "N/m: it is converted)")  # fmt: skip
+    if not isinstance(given, str):
+        raise ParameterError(name, value, f"given in {unit}", unit, message=message)
+    try:
+        stated, expected = parse_unit(given), parse_unit(unit)
+    except UnitError as exc:
+        raise ParameterError(name, value, f"given in {unit}", unit,
+                             message=f"{name}: {exc}") from None  # fmt: skip
+    if not same_dimension(stated.dimension, expected.dimension):
+        raise ParameterError(name, value, f"given in {unit}", unit, message=message)
+    return stated.scale / expected.scale
 
 
 # The readers Vehicle() and its constructors use (railhunt.vehicle.core imports nothing

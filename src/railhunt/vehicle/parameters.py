@@ -17,14 +17,14 @@ and its value in each shipped vehicle file (``railhunt/data/vehicles/*.toml``). 
 import numbers
 from collections.abc import Mapping
 
+from railhunt.quantities.formatting import fmt_value
+from railhunt.quantities.rules import ParameterSpec
 from railhunt.vehicle.errors import (
     DerivedParameterError,
     MissingParametersError,
     ParameterError,
     UnknownParameterError,
 )
-from railhunt.vehicle.formatting import fmt_value
-from railhunt.vehicle.rules import ParameterSpec
 
 # The table itself (VehicleFields, PARAMETERS, DERIVED, suggest, ...) lives in
 # railhunt.vehicle.table, below the error types that name its parameters; its names are

@@ -10,51 +10,26 @@ table sits below both.
 """
 
 import difflib
-import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
 
-from railhunt.vehicle.contact import ContactSpec
-from railhunt.vehicle.rules import (
+from railhunt.quantities.rules import (
+    CONTACT_ANGLE,
+    CONTACT_HALF_DISTANCE,
     FINITE,
+    FRICTION,
     NONNEGATIVE,
     POSITIVE,
+    ROLLING_RADIUS,
     DerivedSpec,
     ParameterSpec,
-    Rule,
     parameter,
     parameter_specs,
 )
+from railhunt.vehicle.contact import ContactSpec
 
 __all__ = ["DERIVED", "PARAMETERS", "VehicleFields", "derived_values", "suggest"]
-
-CONTACT_HALF_DISTANCE = Rule(
-    lower=0.5,
-    lower_strict=True,
-    upper=1.0,
-    reason="half the contact-point distance in m (0.7465 for standard gauge)",
-)
-FRICTION = Rule(
-    lower=0.0,
-    lower_strict=True,
-    upper=1.5,
-    reason="a friction coefficient above 1.5 is not physical",
-)
-ROLLING_RADIUS = Rule(
-    lower=0.2,
-    lower_strict=True,
-    upper=0.7,
-    reason="rolling radius in m (a value in mm is a common mistake)",
-)
-CONTACT_ANGLE = Rule(
-    lower=0.0,
-    lower_strict=True,
-    upper=math.pi / 2,
-    upper_strict=True,
-    upper_label="pi/2",
-    reason="a contact angle in rad",
-)
 
 
 # --------------------------------------------------------------------------- the table

@@ -153,7 +153,10 @@ def bifurcation_command(from_kmh: float, to_kmh: float, initial_mm: float, as_js
               f" at {fmt(diagram.hopf_frequency_hz, '.2f', 'Hz')}"
               f" (from the orbits: {fmt(diagram.hopf_speed_from_orbits_kmh, '.1f', 'km/h')})")
     out.print(f"bifurcation type: {diagram.hopf_type}")
-    out.print(f"nonlinear critical speed (lowest limit cycle): {_fold_text(diagram)}")
+    if diagram.hopf_type == "linear":
+        out.print(f"{diagram.message}; no fold")
+    else:
+        out.print(f"nonlinear critical speed (lowest limit cycle): {_fold_text(diagram)}")
     for fold in diagram.folds:
         out.print(f"  fold at {fold.speed_kmh:.1f} km/h, amplitude {fold.amplitude * 1e3:.2f} mm")
     vp = diagram.point_p_kmh(initial_mm * 1e-3)

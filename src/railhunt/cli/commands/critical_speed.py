@@ -125,9 +125,10 @@ def critical_speed_command(
 
     \b
     Nonlinear critical speed (the paper's method): at each trial speed the
-    vehicle runs over one lateral track defect and the leading wheelset's
-    motion is judged 'stable' (it died out) or not: 'hunting', 'undecided',
-    'derailed' or 'blow-up' (the verdicts are defined below). Starting at
+    vehicle runs over one lateral track defect and the motion of every
+    wheelset and bogie frame is judged 'stable' (it died out) or not:
+    'hunting', 'undecided', 'derailed' or 'blow-up' (the verdicts are defined
+    below); the worst decides, and the table names it. Starting at
     --start the speed is stepped by --step until the verdict changes, then
     bisected to --tol. The result is the highest stable speed (km/h); in a
     curve the search stops at the first limit of the validity envelope.
@@ -218,8 +219,9 @@ def critical_speed_command(
         "note",
     ):
         table.add_column(head, justify="left" if head in ("verdict", "note") else "right")
+    leading = vehicle.assembly.layout.wheelsets[0]
     for i, trial in enumerate(result.trials, 1):
-        note = _trial_note(trial)
+        note = _trial_note(trial, leading)
         table.add_row(
             str(i),
             f"{trial.speed_kmh:g}",
@@ -234,7 +236,7 @@ def critical_speed_command(
     console.print(table)
     for note in _notes_used(result.trials):
         console.print(f"{note}: {_note_meaning(note)}")
-    console.print(_nonlinear_line(result, tol_kmh))
+    console.print(_nonlinear_line(result, tol_kmh, leading))
     console.print(linear_critical_speed_line(linear, curved=curve is not None))
     if _above_linear(result, linear):
         console.print(f"[yellow]note: the nonlinear critical speed lies above the linear one "
@@ -266,14 +268,23 @@ def _notes_used(trials: list[Any]) -> list[str]:
     """The notes of the table that need a word of explanation, in the order first used."""
     out: list[str] = []
     for trial in trials:
-        note = _trial_note(trial)
+        note = _trial_kind(trial)
         if note in (STEADY, TREND, NO_DECAY_NO_CYCLE) and note not in out:
             out.append(note)
     return out
 
 
-def _trial_note(trial: Any) -> str:
-    """The note column: the solver's status if not ok, else how the verdict was taken (an
+def _trial_note(trial: Any, leading: str = "") -> str:
+    """The note column: first the deciding body when it is not the leading wheelset
+    (``leading``), then :func:`_trial_kind`."""
+    body = getattr(trial, "body", "")
+    by = f"{body}: " if body and body != leading and trial.verdict != "stable" else ""
+    kind = _trial_kind(trial)
+    return by + kind if kind else by.rstrip(": ")
+
+
+def _trial_kind(trial: Any) -> str:
+    """How the verdict was taken: the solver's status if not ok, else the note's word (an
     undecided trial's reason is in --verbose and the JSON; its size and trend are in the
     table)."""
     if trial.verdict == "undecided":
@@ -330,11 +341,13 @@ def _announce_search(vehicle: Any, excitation: Any, start_kmh: float, step_kmh: 
                       "simulated", most_simulated=most), vehicle, kmh_to_ms(start_kmh))  # fmt: skip
 
 
-def _nonlinear_line(result: Any, tol_kmh: float) -> str:
+def _nonlinear_line(result: Any, tol_kmh: float, leading: str = "") -> str:
     if result.bracketed:
+        body = getattr(result, "deciding_body", "")
+        by = f" ({body})" if body and body != leading else ""  # the leading one: as always
         return (
             f"nonlinear critical speed: {result.speed_kmh:g} km/h (highest stable speed; "
-            f"hunting at {result.first_hunting_kmh:g} km/h, resolution {tol_kmh:g} km/h)"
+            f"hunting at {result.first_hunting_kmh:g} km/h{by}, resolution {tol_kmh:g} km/h)"
         )
     verdicts = {t.verdict for t in result.trials}
     top = max((t.speed_kmh for t in result.trials), default=800.0)
@@ -374,6 +387,7 @@ def _critical_json(
                           else result.limit.to_dict()),
         "bracketed": bool(result.bracketed),
         "first_hunting_speed_kmh": result.first_hunting_kmh,
+        "deciding_body": getattr(result, "deciding_body", ""),
         "tol_kmh": tol_kmh,
         "above_linear_critical_speed": _above_linear(result, linear),
         "vehicle": vehicle.name,
@@ -392,6 +406,7 @@ def _critical_json(
                 "status": t.status,
                 "reason": getattr(t, "reason", ""),
                 "limits": [lim.to_dict() for lim in getattr(t, "limits", [])],
+                "body": getattr(t, "body", ""),
             }
             for t in result.trials
         ],

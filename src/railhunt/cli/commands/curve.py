@@ -186,8 +186,10 @@ def _print_state(state: Any, vehicle: Any, curve: Any) -> None:
                           end_section=k == 1)  # fmt: skip
     out = stdout_console()
     out.print(table)
-    out.print(f"unbalanced acceleration: {state.unbalanced_acceleration:.3f} m/s^2, cant "
-              f"deficiency {state.cant_deficiency * 1e3:.1f} mm (balance speed "
+    deficit = state.cant_deficiency
+    what = "cant deficiency" if deficit >= 0 else "cant excess"
+    out.print(f"unbalanced acceleration: {state.unbalanced_acceleration:.3f} m/s^2, {what} "
+              f"{abs(deficit) * 1e3:.1f} mm (balance speed "
               f"{_balance_kmh(curve, vehicle):.1f} km/h)")  # fmt: skip
     bogies = ", ".join(f"{y * 1e3:.2f}" for y in state.bogie_y) or "(none)"
     out.print(f"offsets relative to the track: car body {state.car_body_y * 1e3:.2f} mm, "

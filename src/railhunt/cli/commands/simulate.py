@@ -214,9 +214,12 @@ def simulate_command(
     click.echo(f"vehicle:    {vehicle.name}")
     click.echo(f"speed:      {speed:g} km/h, {method}, {t[-1]:g} s simulated")
     click.echo(f"excitation: {described}")
+    from railhunt import Model
     from railhunt.analysis.critical import judge_run
+    from railhunt.analysis.linearity import is_linear
 
-    verdict = judge_run(result, two_sided=curve is not None)
+    verdict = judge_run(result, two_sided=curve is not None,
+                        linear_model=is_linear(Model(vehicle)))  # fmt: skip
     click.echo(f"status:     solver {result.status} ({result.message})")
     if not irregular:
         click.echo(f"verdict:    {verdict.text}")
