@@ -235,7 +235,10 @@ def test_a_sweep_value_that_is_no_number_names_the_parameter():
 
 def test_a_light_body_s_step_names_its_mass():
     # main: "set by the model's fastest mode (...: a stiff spring or a light body)"
-    line = _one_line(run("critical-speed", "--set", "M_w=0.001"))
+    # (a 1 g wheelset is implausible: it must be allowed on purpose to reach the step)
+    refused = _one_line(run("critical-speed", "--set", "M_w=0.001"))
+    assert "implausible" in refused and "`--allow M_w` on the command line" in refused
+    line = _one_line(run("critical-speed", "--set", "M_w=0.001", "--allow", "M_w"))
     assert re.search(r"y_w\d of wheelset\d moves most in it", line), line
     assert "its mass M_w = 0.001 kg is light" in line
     from railhunt.model import Model

@@ -256,7 +256,7 @@ def test_set_and_replace_obey_the_same_rules():
     assert result.exit_code == 2 and "k1 = -1000000 N/m is invalid" in result.output
     for vehicle in (Vehicle.shipped("two_axle_wagon"), Vehicle.paper2019()):
         with pytest.raises(LayoutError, match=r"body 'car': mass = 28.0 is implausible: must "
-                                              r"be in \[1000, 500000\] kg .* allow = true"):
+                                              r"be in \[1000, 500000\] kg .*`allow = true`"):
             vehicle.replace(M_c=28.0)
     result = run("critical-speed", "--set", "M_c=28")
     assert result.exit_code == 2 and "is implausible" in result.output

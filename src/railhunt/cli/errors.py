@@ -73,7 +73,8 @@ def _flag_names(ctx: click.Context | None) -> dict[str, str]:
 
 def flag_names(message: str, ctx: click.Context | None = None) -> str:
     """``message`` with the library's argument names replaced by the flags that set them:
-    ``start_kmh = 5.0 km/h is invalid`` becomes ``--start 5.0 km/h is invalid``."""
+    ``start_kmh = 5.0 km/h is invalid`` becomes ``--start 5.0 km/h is invalid``; a code
+    span in backticks is left as it is."""
     import re
 
     ctx = ctx or click.get_current_context(silent=True)
@@ -87,7 +88,8 @@ def flag_names(message: str, ctx: click.Context | None = None) -> str:
             return match.group(0)
         return f"{names[name]} " if assigned else names[name]
 
-    return re.sub(r"(?<![\w-])([a-z][a-z0-9_]*)(?![\w(])( = )?", flag, message)
+    # A name in a code span (`allow = true`) is quoted literally, not an argument.
+    return re.sub(r"(?<![\w`-])([a-z][a-z0-9_]*)(?![\w(`])( = )?", flag, message)
 
 
 #: Set to 1 (or give ``railhunt --debug``) to see the traceback of an unexpected error.

@@ -419,6 +419,8 @@ def _message(where: str, slot: Slot, x: float, rule: Rule, verb: str) -> str:
 def _ALLOW(slot: Slot) -> str:  # noqa: N802 (a sentence)
     name = slot.parameter
     if name is not None:
-        return f"; to use it on purpose, set allow = true in [parameters.{name}]"
-    return ("; to use it on purpose, compute it from a parameter with allow = true "
-            "([parameters])")
+        return (f"; to use it on purpose, allow it: `allow = true` in [parameters.{name}] of "
+                f"the file, `--allow {name}` on the command line or "
+                f"`Vehicle.allowing({name!r})`")
+    return ("; to use it on purpose, compute it from a parameter that is allowed "
+            "(`allow = true` in its [parameters] table)")
