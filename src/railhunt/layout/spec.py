@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 from railhunt.layout.expressions import Expression
 
 if TYPE_CHECKING:
-    from railhunt.vehicle.rules import ParameterSpec
+    from railhunt.quantities.rules import ParameterSpec
 
 __all__ = [
     "AXES", "BODY_KINDS", "COORDINATES", "ELEMENT_KINDS", "LAWS", "TRACK", "BodySpec",

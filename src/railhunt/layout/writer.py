@@ -13,7 +13,7 @@ from typing import Any
 
 from railhunt.layout.expressions import Expression
 from railhunt.layout.params import rule_name
-from railhunt.vehicle.formatting import toml_string
+from railhunt.quantities.formatting import toml_string
 
 __all__ = ["layout_toml"]
 
