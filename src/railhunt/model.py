@@ -27,12 +27,12 @@ from railhunt.kernel.layout import (
     N_ROUTE,
     N_STATE,
     N_WR,
+    NO_CREEP_TABLE,
     STATE_NAMES,
     WHEELSET_Y,
     WR,
     Y_W1,
     StateLayout,
-    NO_CREEP_TABLE,
     SystemArrays,
 )
 from railhunt.kernel.rhs import jacobian, rhs, wheelset_forces

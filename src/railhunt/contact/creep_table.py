@@ -148,7 +148,8 @@ class CreepTable:
         return np.ascontiguousarray(np.concatenate([head, control_points(self.values).ravel()]))
 
     def normalised(self, ux: float, uy: float, us: float, a_over_b: float,
-                   moment: tuple[float, float] | None = None) -> tuple[float, float, float]:  # fmt: skip
+                   moment: tuple[float, float] | None = None
+                   ) -> tuple[float, float, float]:  # fmt: skip
         """``(F_x/(mu N), F_y/(mu N), M_z/(mu N c))`` at normalised creepages, by the compiled
         law. ``moment``: ``(m_y, m_s)``; default the table's own at that ``a/b``."""
         lo, step = self.ab_grid

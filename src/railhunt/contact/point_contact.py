@@ -165,8 +165,12 @@ class PointContact(ResultDisplay):
         if ab_grid is None:
             cols[:, PointColumn.AB] = 0.0
         else:
-            cols[:, PointColumn.AB] = (np.log(self.a_over_b) - ab_grid[0]) / ab_grid[1]
-        return np.concatenate([[float(PER_POINT), float(np.cbrt(static_load))], cols.ravel()])
+            # The nearest slice of each grid point: between two points of one slice the
+            # compiled law reads that slice alone (one stencil, not two).
+            cols[:, PointColumn.AB] = np.round((np.log(self.a_over_b) - ab_grid[0])
+                                               / ab_grid[1])  # fmt: skip
+        blocks = np.transpose(cols, (2, 0, 1)).ravel()  # per grid point: left, then right
+        return np.concatenate([[float(PER_POINT), float(np.cbrt(static_load))], blocks])
 
     def _summary(self) -> list[Row]:
         ab = self.a_over_b

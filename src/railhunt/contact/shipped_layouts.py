@@ -3,10 +3,10 @@
 The paper's layout (``paper2019.toml``, bodies and elements unchanged) with the parameter
 values of the shipped ``s1002_uic60_table.toml`` (S1002 on UIC60 1:40, from
 :func:`railhunt.contact.fit.s1002_uic60_parameters`: the same numbers, so that the two
-vehicles differ in their contact mechanics only), its ``[contact]`` section, and the wheel/rail keys of per-point
-contact mechanics: ``contact = "profiles"``, ``contact_mechanics = "per-point"``,
-``creep_law = "exact-table"``, ``shear_modulus``, ``poisson``. A test checks that the shipped
-file is what this writes.
+vehicles differ in their contact mechanics only), its ``[contact]`` section, and the
+wheel/rail keys of per-point contact mechanics: ``contact = "profiles"``,
+``contact_mechanics = "per-point"``, ``creep_law = "exact-table"``, ``shear_modulus``,
+``poisson``. A test checks that the shipped file is what this writes.
 """
 
 from __future__ import annotations
@@ -75,9 +75,8 @@ rule = "positive"
 
 def s1002_uic60_per_point_toml() -> str:
     """Text of the shipped ``s1002_uic60_per_point.toml`` (module docstring)."""
-    from importlib import resources
-
     import tomllib
+    from importlib import resources
 
     from railhunt.vehicle import ContactSpec
 

@@ -21,11 +21,14 @@ included. ``D`` is tabulated on a uniform grid of ``s = sign(u) (1 - (1 + |u|)^(
 (the whole real line in ``[-1, 1]``, decades spread evenly) for ``u_x``, ``u_y``
 (``p = 1/2``) and the spin's full linear strength ``w = u_s sqrt(1 + m_s^2)`` (force and
 moment; ``p = 1/4``: the spin acts over four decades, its moment saturating long before
-its lateral force on a wide ellipse), and
-interpolated by tensor-product quadratic B-splines through the nodes (continuous first
-derivatives in all three creepages: Newton, continuation and the Jacobians get smooth
-forces), linearly between the two slices of ``ln(a/b)`` that bracket the contact's (the
-ellipse varies with the lateral position only, already interpolated linearly). Symmetry
+its lateral force on a wide ellipse), and interpolated by tensor-product quadratic
+B-splines through the nodes (continuous first derivatives in all three creepages: Newton,
+continuation and the Jacobians get smooth forces). In ``a/b`` the slices are uniform in
+``ln(a/b)``; a fractional slice index blends two slices linearly. The per-point model
+gives each point of its contact table the slice nearest its ellipse and interpolates
+that index in ``y`` (the ellipse varies with the lateral position only): between two
+points of one slice one stencil is read, between points of two slices they are blended
+linearly in ``y`` like every other per-point quantity. Symmetry
 ``F_x(-xi) = -F_x(xi)``, ``F_y, M_z`` even in ``xi``, holds exactly: the table keeps
 ``u_x >= 0`` and ghost nodes of the right parity. Finally ``|(t_x, t_y)|`` is kept below 1
 smoothly (above 0.98 it is compressed by a tanh; the exact theory gives at most 1).
@@ -33,7 +36,8 @@ smoothly (above 0.98 it is compressed by a tanh; the exact theory gives at most 
 Layout of the flat array (:class:`TableHeader`): a header, then the B-spline control
 points ``(n_ab, n_x + 2, n_y + 2, n_s + 2, 3)`` in C order (one ghost node at each end of
 each creepage axis; the outputs ``D_x, D_y, D_m`` last). Built by
-``benchmarks/../scripts`` (:mod:`railhunt.contact.creep_table`), shipped in the package.
+:mod:`railhunt.contact.creep_table` (``python -m railhunt.data.creep.build_creep_table``),
+shipped in the package.
 """
 
 from __future__ import annotations
@@ -64,7 +68,7 @@ class TableHeader(IntEnum):
 _CAP = 0.98
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _weights(p: float, n: int) -> tuple[int, float, float, float]:
     """Quadratic B-spline stencil at grid coordinate ``p`` in ``[0, n - 1]``: the first of
     its three control points (padded index) and their weights."""
@@ -79,6 +83,39 @@ def _weights(p: float, n: int) -> tuple[int, float, float, float]:
     return i, w0, 1.0 - w0 - w2, w2
 
 
+@njit(cache=True, inline="always")
+def _z3(table: np.ndarray, k: int, w: float, z0: float, z1: float,
+        z2: float) -> tuple[float, float, float]:  # fmt: skip
+    """``w`` times the three outputs summed over three consecutive spin nodes from ``k``."""
+    a0 = w * z0
+    a1 = w * z1
+    a2 = w * z2
+    return (a0 * table[k] + a1 * table[k + 3] + a2 * table[k + 6],
+            a0 * table[k + 1] + a1 * table[k + 4] + a2 * table[k + 7],
+            a0 * table[k + 2] + a1 * table[k + 5] + a2 * table[k + 8])
+
+
+@njit(cache=True, inline="always")
+def _slice(table: np.ndarray, k: int, sx_stride: int, sy_stride: int, x0: float, x1: float,
+           x2: float, y0: float, y1: float, y2: float, z0: float, z1: float,
+           z2: float) -> tuple[float, float, float]:  # fmt: skip
+    """The 27-node stencil of one ``a/b`` slice from its first node ``k``."""
+    a0, b0, c0 = _z3(table, k, x0 * y0, z0, z1, z2)
+    a1, b1, c1 = _z3(table, k + sy_stride, x0 * y1, z0, z1, z2)
+    a2, b2, c2 = _z3(table, k + 2 * sy_stride, x0 * y2, z0, z1, z2)
+    k += sx_stride
+    a3, b3, c3 = _z3(table, k, x1 * y0, z0, z1, z2)
+    a4, b4, c4 = _z3(table, k + sy_stride, x1 * y1, z0, z1, z2)
+    a5, b5, c5 = _z3(table, k + 2 * sy_stride, x1 * y2, z0, z1, z2)
+    k += sx_stride
+    a6, b6, c6 = _z3(table, k, x2 * y0, z0, z1, z2)
+    a7, b7, c7 = _z3(table, k + sy_stride, x2 * y1, z0, z1, z2)
+    a8, b8, c8 = _z3(table, k + 2 * sy_stride, x2 * y2, z0, z1, z2)
+    return (((a0 + a1) + (a2 + a3)) + ((a4 + a5) + (a6 + a7)) + a8,
+            ((b0 + b1) + (b2 + b3)) + ((b4 + b5) + (b6 + b7)) + b8,
+            ((c0 + c1) + (c2 + c3)) + ((c4 + c5) + (c6 + c7)) + c8)
+
+
 @njit(cache=True)
 def table_correction(sx: float, sy: float, ss: float, ab_index: float,
                      table: np.ndarray) -> tuple[float, float, float]:  # fmt: skip
@@ -91,50 +128,33 @@ def table_correction(sx: float, sy: float, ss: float, ab_index: float,
     ix, x0, x1, x2 = _weights(sx * (nx - 1), nx)
     iy, y0, y1, y2 = _weights((sy + 1.0) * 0.5 * (ny - 1), ny)
     iz, z0, z1, z2 = _weights((ss + 1.0) * 0.5 * (ns - 1), ns)
-    if ab_index <= 0.0:
+    if n_ab == 1 or ab_index <= 0.0:
         ia, wa = 0, 0.0
     elif ab_index >= n_ab - 1.0:
         ia, wa = n_ab - 2, 1.0
     else:
         ia = int(ab_index)
         wa = ab_index - ia
-    if n_ab == 1:
-        ia, wa = 0, 0.0
     sy_stride = (ns + 2) * 3
     sx_stride = (ny + 2) * sy_stride
     sa_stride = (nx + 2) * sx_stride
-    dx = 0.0
-    dy = 0.0
-    dm = 0.0
-    for a in range(2):
-        wsl = 1.0 - wa if a == 0 else wa
-        if wsl == 0.0:
-            continue
-        base = TableHeader.DATA + (ia + a) * sa_stride + iz * 3
-        for i in range(3):
-            wi = wsl * (x0 if i == 0 else (x1 if i == 1 else x2))
-            row = base + (ix + i) * sx_stride
-            for j in range(3):
-                wij = wi * (y0 if j == 0 else (y1 if j == 1 else y2))
-                k = row + (iy + j) * sy_stride
-                w = wij * z0
-                dx += w * table[k]
-                dy += w * table[k + 1]
-                dm += w * table[k + 2]
-                w = wij * z1
-                dx += w * table[k + 3]
-                dy += w * table[k + 4]
-                dm += w * table[k + 5]
-                w = wij * z2
-                dx += w * table[k + 6]
-                dy += w * table[k + 7]
-                dm += w * table[k + 8]
+    k = TableHeader.DATA + ia * sa_stride + ix * sx_stride + iy * sy_stride + iz * 3
+    dx, dy, dm = 0.0, 0.0, 0.0
+    if wa < 1.0:
+        dx, dy, dm = _slice(table, k, sx_stride, sy_stride, (1.0 - wa) * x0,
+                            (1.0 - wa) * x1, (1.0 - wa) * x2, y0, y1, y2, z0, z1, z2)
+    if wa > 0.0:
+        a, b, c = _slice(table, k + sa_stride, sx_stride, sy_stride, wa * x0, wa * x1,
+                         wa * x2, y0, y1, y2, z0, z1, z2)
+        dx += a
+        dy += b
+        dm += c
     return dx, dy, dm
 
 
 @njit(cache=True)
 def table_creep(ux: float, uy: float, us: float, my: float, ms: float, ab_index: float,
-                table: np.ndarray) -> tuple[float, float, float]:  # fmt: skip
+                table: np.ndarray, ks: float = -1.0) -> tuple[float, float, float]:  # fmt: skip
     """Normalised creep forces and spin moment of one contact from the creep table.
 
     Parameters
@@ -148,6 +168,8 @@ def table_creep(ux: float, uy: float, us: float, my: float, ms: float, ab_index:
         ``a/b`` as a fractional slice index of the table.
     table : numpy.ndarray
         The creep table (module docstring).
+    ks : float, optional
+        ``sqrt(1 + m_s^2)`` if known (default: computed).
 
     Returns
     -------
@@ -166,16 +188,21 @@ def table_creep(ux: float, uy: float, us: float, my: float, ms: float, ab_index:
     tm = lm * inv
     if rho2 > 0.0:
         q = rho2 * inv * inv
-        w = us * math.sqrt(1.0 + ms * ms)
+        w = us * (math.sqrt(1.0 + ms * ms) if ks < 0.0 else ks)
         sx = 1.0 - 1.0 / math.sqrt(1.0 + ux)
-        sy = math.copysign(1.0 - 1.0 / math.sqrt(1.0 + abs(uy)), uy)
-        ss = math.copysign(1.0 - 1.0 / math.sqrt(math.sqrt(1.0 + abs(w))), w)
+        sy = 1.0 - 1.0 / math.sqrt(1.0 + abs(uy))
+        if uy < 0.0:
+            sy = -sy
+        ss = 1.0 - 1.0 / math.sqrt(math.sqrt(1.0 + abs(w)))
+        if w < 0.0:
+            ss = -ss
         dx, dy, dm = table_correction(sx, sy, ss, ab_index, table)
         tx += q * dx
         ty += q * dy
         tm += q * dm
-    r = math.sqrt(tx * tx + ty * ty)
-    if r > _CAP:
+    r2 = tx * tx + ty * ty
+    if r2 > _CAP * _CAP:
+        r = math.sqrt(r2)
         scale = (_CAP + (1.0 - _CAP) * math.tanh((r - _CAP) / (1.0 - _CAP))) / r
         tx *= scale
         ty *= scale

@@ -251,8 +251,9 @@ class WR(IntEnum):
     followed by the per-point contact mechanics (:class:`PointColumn`): at
     ``p = TABLE + 3 + 4 n`` the code :data:`PER_POINT` (0 or absent: the vehicle's
     centred coefficients, as before), at ``p + 1`` the cube root of the static load
-    ``N^(1/3)``, then the columns of the left wheel and those of the right wheel, ``n``
-    values each, on the same grid (:func:`railhunt.kernel.point_contact.point_columns`).
+    ``N^(1/3)``, then for each grid point the columns of the left wheel and those of the
+    right wheel (``2 N_POINT_COLUMNS`` values per point, contiguous:
+    :func:`railhunt.kernel.point_contact.point_columns` reads two blocks).
     """
 
     F11 = 0  # longitudinal creep coefficient (N)
@@ -296,8 +297,9 @@ class PointColumn(IntEnum):
     without creep forces, the Hertz ellipse's ``c = sqrt(a b) = C1 Q^(1/3)`` and Kalker's
     coefficients ``f11 = K11 Q^(2/3)``, ``f22 = K22 Q^(2/3)``, ``f23 = K23 Q``,
     ``f33 = K33 Q^(4/3)`` (the powers of ``1/cos(delta)`` of ``N0`` are in the columns).
-    ``AB`` is the fractional index of the ellipse's ``a/b`` in the creep table's grid
-    (:mod:`railhunt.kernel.creep_table`).
+    ``AB`` is the index of the creep table's slice nearest the ellipse's ``a/b``
+    (:mod:`railhunt.kernel.creep_table`; interpolated in ``y``, fractional between points
+    of different slices).
     """
 
     C1 = 0  # sqrt(a b) per Q^(1/3) (m / N^(1/3))
@@ -305,7 +307,7 @@ class PointColumn(IntEnum):
     K22 = 2  # f22 per Q^(2/3) (N^(1/3))
     K23 = 3  # f23 per Q (m)
     K33 = 4  # f33 per Q^(4/3) (m^2 / N^(1/3))
-    AB = 5  # a/b as a fractional index of the creep table's grid
+    AB = 5  # the creep table's slice of this a/b (index)
 
 
 #: Number of per-point columns of one wheel.

@@ -37,9 +37,10 @@ from numba import njit
 
 from railhunt.kernel.creep import CreepLaw, heuristic_saturation, polach_saturation
 from railhunt.kernel.creep_table import table_creep
-from railhunt.kernel.layout import PER_POINT, WR
+from railhunt.kernel.layout import N_POINT_COLUMNS, PER_POINT, WR
 
-__all__ = ["normal_force", "point_columns", "point_wheelset_contact", "uses_per_point"]
+__all__ = ["normal_force_ratio", "point_columns", "point_wheel_creep", "point_wheelset_contact",
+           "uses_per_point"]
 
 #: Below this the equilibrium's denominator ``cos d +- t sin d`` is floored smoothly ...
 _DEN_KNEE = 0.05
@@ -92,43 +93,34 @@ def point_columns(y_rel: float, wr: np.ndarray) -> tuple[float, ...]:
     d_l = wr[k] + w * (wr[k + 1] - wr[k])
     k += n
     d_r = wr[k] + w * (wr[k + 1] - wr[k])
-    k = WR.TABLE + 3 + 4 * n + 2 + i
-    v0 = wr[k] + w * (wr[k + 1] - wr[k])
-    k += n
-    v1 = wr[k] + w * (wr[k + 1] - wr[k])
-    k += n
-    v2 = wr[k] + w * (wr[k + 1] - wr[k])
-    k += n
-    v3 = wr[k] + w * (wr[k + 1] - wr[k])
-    k += n
-    v4 = wr[k] + w * (wr[k + 1] - wr[k])
-    k += n
-    v5 = wr[k] + w * (wr[k + 1] - wr[k])
-    k += n
-    u0 = wr[k] + w * (wr[k + 1] - wr[k])
-    k += n
-    u1 = wr[k] + w * (wr[k + 1] - wr[k])
-    k += n
-    u2 = wr[k] + w * (wr[k + 1] - wr[k])
-    k += n
-    u3 = wr[k] + w * (wr[k + 1] - wr[k])
-    k += n
-    u4 = wr[k] + w * (wr[k + 1] - wr[k])
-    k += n
-    u5 = wr[k] + w * (wr[k + 1] - wr[k])
+    # Per-point columns: one block of 2 x N_POINT_COLUMNS values per grid point.
+    k = WR.TABLE + 3 + 4 * n + 2 + 2 * N_POINT_COLUMNS * i
+    j = k + 2 * N_POINT_COLUMNS
+    v0 = wr[k] + w * (wr[j] - wr[k])
+    v1 = wr[k + 1] + w * (wr[j + 1] - wr[k + 1])
+    v2 = wr[k + 2] + w * (wr[j + 2] - wr[k + 2])
+    v3 = wr[k + 3] + w * (wr[j + 3] - wr[k + 3])
+    v4 = wr[k + 4] + w * (wr[j + 4] - wr[k + 4])
+    v5 = wr[k + 5] + w * (wr[j + 5] - wr[k + 5])
+    u0 = wr[k + 6] + w * (wr[j + 6] - wr[k + 6])
+    u1 = wr[k + 7] + w * (wr[j + 7] - wr[k + 7])
+    u2 = wr[k + 8] + w * (wr[j + 8] - wr[k + 8])
+    u3 = wr[k + 9] + w * (wr[j + 9] - wr[k + 9])
+    u4 = wr[k + 10] + w * (wr[j + 10] - wr[k + 10])
+    u5 = wr[k + 11] + w * (wr[j + 11] - wr[k + 11])
     return (r_l, r_r, d_l, d_r, v0, v1, v2, v3, v4, v5, u0, u1, u2, u3, u4, u5)
 
 
 @njit(cache=True)
-def normal_force(q: float, cd: float, sd: float, t_lat: float, side: float) -> float:
-    """Normal force (N) that balances the vertical load ``q`` (N) of a wheel whose
-    in-plane lateral creep force is ``t_lat`` times its normal force (module docstring);
-    ``side`` +1 for the left wheel, -1 for the right."""
+def normal_force_ratio(cd: float, sd: float, t_lat: float, side: float) -> float:
+    """``N / N0`` (``N0 = Q / cos(delta)``) of a wheel whose in-plane lateral creep force
+    is ``t_lat`` times ``N0``: the normal force that balances its vertical load (module
+    docstring); ``side`` +1 for the left wheel, -1 for the right."""
     den = cd + side * t_lat * sd
     if den < _DEN_KNEE:
         den = _DEN_MIN + (_DEN_KNEE - _DEN_MIN) * math.exp(
             (den - _DEN_KNEE) / (_DEN_KNEE - _DEN_MIN))
-    return q / den
+    return cd / den
 
 
 @njit(cache=True)
@@ -141,29 +133,27 @@ def _linear(q: float, qth: float, cd: float, c1: float, k11: float, k22: float, 
 
 
 @njit(cache=True)
-def point_wheelset_contact(
-    y_rel: float, dy: float, psi: float, psi_rel: float, yaw_rate: float, v: float,
+def point_wheel_creep(
+    y_rel: float, dy: float, cpsi: float, spsi: float, yaw_rate: float, v: float,
     wr: np.ndarray, q_left: float, q_right: float, table: np.ndarray,
-) -> tuple[float, float, float, float, float, float]:  # fmt: skip
-    """Forces of the rails on one wheelset with per-point contact mechanics.
+) -> tuple[float, ...]:  # fmt: skip
+    """Creepages, creep forces and normal forces of both wheels, per-point mechanics.
 
-    Parameters as :func:`railhunt.kernel.wheelset.wheelset_contact`; ``table`` is the creep
-    table of the ``"exact-table"`` law (empty: that law falls back to the heuristic
-    saturation per wheel).
+    Parameters as :func:`point_wheelset_contact` (``cpsi``, ``spsi``: cosine and sine of
+    the yaw angle relative to the track).
 
     Returns
     -------
     tuple of float
-        ``(F_y, M_z, F_left, F_right, N_left, N_right)``: lateral force (N) and yaw moment
-        (N*m) on the wheelset, the lateral force on each wheel (N, + left) and the normal
-        forces (N).
+        ``(Fx_L, Fy_L, Mz_L, Fx_R, Fy_R, Mz_R, xi_x_L, xi_y_L, phi_L, xi_x_R, xi_y_R,
+        phi_R, N_L, N_R, delta_L, delta_R)``: forces (N) and spin moments (N*m) in each
+        contact's plane, creepages (-, -, 1/m), normal forces (N), contact angles (rad).
     """
     a, r0 = wr[WR.A], wr[WR.R0]
     (r_l, r_r, d_l, d_r, c1l, k11l, k22l, k23l, k33l, abl,
      c1r, k11r, k22r, k23r, k33r, abr) = point_columns(y_rel, wr)  # fmt: skip
     cdl, sdl = math.cos(d_l), math.sin(d_l)
     cdr, sdr = math.cos(d_r), math.sin(d_r)
-    cpsi, spsi = math.cos(psi), math.sin(psi)
     # Creepages (Eq. 25), as in wheel_creep.
     omega = v / r0
     inv_v = 1.0 / v
@@ -187,9 +177,11 @@ def point_wheelset_contact(
     if law == CreepLaw.EXACT_TABLE and table.shape[0] > 0:
         ml = mu * n0l
         mr = mu * n0r
-        txl, tyl, tml = table_creep(f11l * xl / ml, f22l * yl / ml, f23l * sl / ml,
+        il = 1.0 / ml
+        ir = 1.0 / mr
+        txl, tyl, tml = table_creep(f11l * xl * il, f22l * yl * il, f23l * sl * il,
                                     f23l / (f22l * cl), f33l / (f23l * cl), abl, table)
-        txr, tyr, tmr = table_creep(f11r * xr / mr, f22r * yr / mr, f23r * sr / mr,
+        txr, tyr, tmr = table_creep(f11r * xr * ir, f22r * yr * ir, f23r * sr * ir,
                                     f23r / (f22r * cr), f33r / (f23r * cr), abr, table)
         fxl, fyl, mzl = ml * txl, ml * tyl, ml * cl * tml
         fxr, fyr, mzr = mr * txr, mr * tyr, mr * cr * tmr
@@ -226,16 +218,37 @@ def point_wheelset_contact(
         fyr *= ar
     # The normal forces from each wheel's vertical equilibrium; every force of the
     # contact follows (one fixed-point step, module docstring).
-    n_l = normal_force(q_left, cdl, sdl, fyl / n0l, 1.0)
-    n_r = normal_force(q_right, cdr, sdr, fyr / n0r, -1.0)
-    gl = n_l / n0l
-    gr = n_r / n0r
-    fxl *= gl
-    fyl *= gl
-    mzl *= gl
-    fxr *= gr
-    fyr *= gr
-    mzr *= gr
+    gl = normal_force_ratio(cdl, sdl, fyl / n0l, 1.0)
+    gr = normal_force_ratio(cdr, sdr, fyr / n0r, -1.0)
+    return (fxl * gl, fyl * gl, mzl * gl, fxr * gr, fyr * gr, mzr * gr, xl, yl, sl, xr, yr,
+            sr, gl * n0l, gr * n0r, d_l, d_r)
+
+
+@njit(cache=True)
+def point_wheelset_contact(
+    y_rel: float, dy: float, psi: float, psi_rel: float, yaw_rate: float, v: float,
+    wr: np.ndarray, q_left: float, q_right: float, table: np.ndarray,
+) -> tuple[float, float, float, float, float, float]:  # fmt: skip
+    """Forces of the rails on one wheelset with per-point contact mechanics.
+
+    Parameters as :func:`railhunt.kernel.wheelset.wheelset_contact`; ``table`` is the creep
+    table of the ``"exact-table"`` law (empty: that law falls back to the heuristic
+    saturation per wheel).
+
+    Returns
+    -------
+    tuple of float
+        ``(F_y, M_z, F_left, F_right, N_left, N_right)``: lateral force (N) and yaw moment
+        (N*m) on the wheelset, the lateral force on each wheel (N, + left) and the normal
+        forces (N).
+    """
+    cpsi, spsi = math.cos(psi), math.sin(psi)
+    (fxl, fyl, mzl, fxr, fyr, mzr, _, _, _, _, _, _, n_l, n_r, d_l,
+     d_r) = point_wheel_creep(y_rel, dy, cpsi, spsi, yaw_rate, v, wr, q_left, q_right,
+                              table)  # fmt: skip
+    cdl, sdl = math.cos(d_l), math.sin(d_l)
+    cdr, sdr = math.cos(d_r), math.sin(d_r)
+    a = wr[WR.A]
     # Into track coordinates (Eqs. 29-30 with the normal forces' lateral parts).
     nsl = n_l * sdl
     nsr = n_r * sdr
