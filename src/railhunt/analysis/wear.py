@@ -59,9 +59,10 @@ def wheelset_creep(model: Model, speed: float, x: np.ndarray, j: int = 0,
     wr = s.wheel_rail[j]
     q_l, q_r, track_rate = wheel_loads(pos, v, wr, s.route)
     if uses_per_point(wr):
-        out = point_wheel_creep(x[iy] - yr, x[nq + iy], math.cos(x[ip]), math.sin(x[ip]),
-                                x[nq + ip] + track_rate, v, wr, q_l, q_r, s.creep_table)
-        return np.array([out[0:3] + out[6:9], out[3:6] + out[9:12]])
+        (fxl, fyl, mzl, fxr, fyr, mzr, xl, yl, sl, xr, yr_, sr, *_) = point_wheel_creep(
+            x[iy] - yr, x[nq + iy], math.cos(x[ip]), math.sin(x[ip]),
+            x[nq + ip] + track_rate, v, wr, q_l, q_r, s.creep_table)
+        return np.array([[fxl, fyl, mzl, xl, yl, sl], [fxr, fyr, mzr, xr, yr_, sr]])
     r_l, r_r, d_l, d_r = wheel_geometry(x[iy] - yr, wr)
     out = wheel_creep(r_l, r_r, math.cos(d_l), math.sin(d_l), math.cos(d_r), math.sin(d_r),
                       math.cos(x[ip]), math.sin(x[ip]), x[nq + iy], x[nq + ip] + track_rate, v,

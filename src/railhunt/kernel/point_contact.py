@@ -102,12 +102,14 @@ def point_columns(y_rel: float, wr: np.ndarray) -> tuple[float, ...]:
     v3 = wr[k + 3] + w * (wr[j + 3] - wr[k + 3])
     v4 = wr[k + 4] + w * (wr[j + 4] - wr[k + 4])
     v5 = wr[k + 5] + w * (wr[j + 5] - wr[k + 5])
-    u0 = wr[k + 6] + w * (wr[j + 6] - wr[k + 6])
-    u1 = wr[k + 7] + w * (wr[j + 7] - wr[k + 7])
-    u2 = wr[k + 8] + w * (wr[j + 8] - wr[k + 8])
-    u3 = wr[k + 9] + w * (wr[j + 9] - wr[k + 9])
-    u4 = wr[k + 10] + w * (wr[j + 10] - wr[k + 10])
-    u5 = wr[k + 11] + w * (wr[j + 11] - wr[k + 11])
+    k += N_POINT_COLUMNS  # the right wheel's block
+    j += N_POINT_COLUMNS
+    u0 = wr[k] + w * (wr[j] - wr[k])
+    u1 = wr[k + 1] + w * (wr[j + 1] - wr[k + 1])
+    u2 = wr[k + 2] + w * (wr[j + 2] - wr[k + 2])
+    u3 = wr[k + 3] + w * (wr[j + 3] - wr[k + 3])
+    u4 = wr[k + 4] + w * (wr[j + 4] - wr[k + 4])
+    u5 = wr[k + 5] + w * (wr[j + 5] - wr[k + 5])
     return (r_l, r_r, d_l, d_r, v0, v1, v2, v3, v4, v5, u0, u1, u2, u3, u4, u5)
 
 

@@ -1,0 +1,205 @@
+"""Per-point contact mechanics: curvatures, ellipses, coefficients, normal force, symmetry.
+
+References: the Hertz ellipse and Kalker's coefficients of the centred contact
+(:func:`railhunt.contact.hertz.creep_coefficients`, the values behind the shipped
+vehicles), the analytic curvature of circles, the vertical equilibrium of each wheel, the
+mirror symmetry of the wheelset, the linear limit of the tabulated law.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from importlib import resources
+
+import numpy as np
+import pytest
+
+import railhunt
+from railhunt.contact.curvature import profile_curvature
+from railhunt.contact.hertz import creep_coefficients
+from railhunt.contact.point_contact import point_contact
+from railhunt.kernel.creep_table import table_creep
+from railhunt.kernel.layout import WR
+from railhunt.kernel.point_contact import point_wheel_creep, point_wheelset_contact
+from railhunt.layout.spec import LayoutError
+from railhunt.model import Model
+
+PER_POINT = "s1002_uic60_per_point"
+
+
+@pytest.fixture(scope="module")
+def geometry():
+    return railhunt.Vehicle.shipped("s1002_uic60_table").contact.geometry()
+
+
+@pytest.fixture(scope="module")
+def models():
+    v = railhunt.Vehicle.shipped(PER_POINT)
+    return {law: Model(v, creep_law=law) for law in ("heuristic-per-wheel", "exact-table")}
+
+
+def test_curvature_of_circles_at_any_slope() -> None:
+    """A circle of radius R has curvature 1/R wherever it is read, also at 60 degrees."""
+    for radius in (0.013, 0.3):
+        t = np.linspace(-1.2, 1.2, 20001)
+        y, z = radius * np.sin(t), radius * (1.0 - np.cos(t))
+        at = radius * np.sin(np.array([0.0, 0.5, 1.05]))
+        k = profile_curvature(y, z, at, half_width=min(2e-3, 0.1 * radius))
+        assert np.allclose(k, 1.0 / radius, rtol=1e-4)
+
+
+def test_centred_ellipse_and_coefficients_are_hertz_and_kalker(geometry) -> None:
+    """At the centred contact the per-point coefficients are creep_coefficients' for the
+    same curvatures, N = Q / cos(delta) and the wheel's radius r / cos(delta) (the normal
+    section along the rolling direction); the UIC60 crown reads R300."""
+    pc = point_contact(geometry)
+    i0 = int(np.argmin(np.abs(pc.y)))
+    q = 10900.0 * 9.8 / 2.0
+    assert pc.rail_curvature[0, i0] == pytest.approx(1.0 / 0.3, rel=1e-3)
+    d = pc.delta[0, i0]
+    ref = creep_coefficients(q / math.cos(d), pc.radius[0, i0] / math.cos(d),
+                             wheel_transverse_radius=1.0 / pc.wheel_curvature[0, i0],
+                             rail_transverse_radius=1.0 / pc.rail_curvature[0, i0],
+                             young=2.1e11, nu=0.3)  # fmt: skip
+    f = pc.coefficients(q)
+    a, b = pc.ellipse(q)
+    assert (a[0, i0], b[0, i0]) == pytest.approx((ref.a, ref.b), rel=1e-9)
+    assert [c[0, i0] for c in f] == pytest.approx([ref.f11, ref.f22, ref.f23, ref.f33],
+                                                 rel=1e-9)  # fmt: skip
+    # ... and within 0.3 % of the shipped vehicle's centred coefficients (curvatures fitted
+    # over +-2 mm of y there, of arc here).
+    shipped = railhunt.Vehicle.shipped("s1002_uic60_table")
+    for c, name in zip(f, ("f11", "f22", "f23", "f33"), strict=True):
+        assert c[0, i0] == pytest.approx(getattr(shipped, name), rel=3e-3)
+    # Mirror: the right wheel at -y is the left wheel at +y.
+    assert np.allclose(pc.a1[1], pc.a1[0, ::-1]) and np.allclose(pc.c23[1], pc.c23[0, ::-1])
+
+
+def test_flange_ellipse_is_long_and_within_range(geometry) -> None:
+    pc = point_contact(geometry)
+    flange = pc.delta[0] > 0.9
+    assert flange.any()
+    assert np.all(pc.a_over_b[0, flange] > 10.0) and np.all(pc.a_over_b <= 20.0 + 1e-9)
+
+
+def _state(rng: np.random.Generator) -> tuple[float, ...]:
+    return (rng.uniform(-0.01, 0.01), rng.normal() * 0.1, rng.normal() * 0.004,
+            rng.normal() * 0.1, 80.0)  # fmt: skip
+
+
+@pytest.mark.parametrize("law", ["heuristic-per-wheel", "exact-table"])
+def test_vertical_equilibrium_of_each_wheel(models, law) -> None:
+    """N cos(delta) +- T sin(delta) = Q for each wheel (T the in-plane lateral creep force),
+    so the two wheels carry the axle's weight W g; |(F_x, F_y)| <= mu N."""
+    m = models[law]
+    wr = m.wr
+    s = m.system()
+    rng = np.random.default_rng(3)
+    q = wr[WR.N]
+    mu = wr[WR.MU]
+    for _ in range(40):
+        y, dy, psi, dpsi, v = _state(rng)
+        out = point_wheel_creep(y, dy, math.cos(psi), math.sin(psi), dpsi, v, wr, q, q,
+                                s.creep_table)  # fmt: skip
+        fxl, fyl, _, fxr, fyr, _ = out[:6]
+        n_l, n_r, d_l, d_r = out[12:16]
+        up_l = n_l * math.cos(d_l) + fyl * math.sin(d_l)
+        up_r = n_r * math.cos(d_r) - fyr * math.sin(d_r)
+        assert up_l == pytest.approx(q, rel=1e-12) and up_r == pytest.approx(q, rel=1e-12)
+        assert up_l + up_r == pytest.approx(wr[WR.W] * wr[WR.G], rel=1e-12)
+        assert math.hypot(fxl, fyl) <= mu * n_l * (1 + 1e-12)
+        assert math.hypot(fxr, fyr) <= mu * n_r * (1 + 1e-12)
+
+
+@pytest.mark.parametrize("law", ["heuristic-per-wheel", "exact-table"])
+def test_mirror_symmetry_of_the_wheelset_force(models, law) -> None:
+    """y, dy, psi, dpsi -> their negatives: the lateral force and yaw moment change sign."""
+    m = models[law]
+    wr, table = m.wr, m.system().creep_table
+    q = wr[WR.N]
+    rng = np.random.default_rng(7)
+    for _ in range(40):
+        y, dy, psi, dpsi, v = _state(rng)
+        f = point_wheelset_contact(y, dy, psi, psi, dpsi, v, wr, q, q, table)
+        g = point_wheelset_contact(-y, -dy, -psi, -psi, -dpsi, v, wr, q, q, table)
+        scale = abs(f[0]) + abs(f[1]) + 1.0
+        assert abs(f[0] + g[0]) < 1e-9 * scale and abs(f[1] + g[1]) < 1e-9 * scale
+        assert f[4] == pytest.approx(g[5], rel=1e-12)  # N_left(y) = N_right(-y)
+
+
+def test_table_law_linear_limit_is_kalker() -> None:
+    """Tiny normalised creepages: the tabulated law is Kalker's linear law."""
+    from railhunt.contact.creep_table import shipped_creep_table
+
+    table = shipped_creep_table().kernel_array
+    my, ms = 0.4, 2.2
+    for u in ((1e-5, 0.0, 0.0), (0.0, 1e-5, 0.0), (0.0, 0.0, 1e-5), (3e-6, -2e-6, 4e-6)):
+        t = table_creep(*u, my, ms, 3.0, table)
+        lin = (-u[0], -(u[1] + u[2]), my * u[1] - ms * u[2])
+        assert t == pytest.approx(lin, rel=1e-4, abs=1e-12)
+
+
+def test_table_law_is_bounded_and_symmetric() -> None:
+    from railhunt.contact.creep_table import shipped_creep_table
+
+    table = shipped_creep_table().kernel_array
+    rng = np.random.default_rng(11)
+    for _ in range(300):
+        u = rng.normal(size=3) * 10.0 ** rng.uniform(-2, 3)
+        ab = rng.uniform(0, 11)
+        tx, ty, tm = table_creep(u[0], u[1], u[2], 0.5, 1.0, ab, table)
+        assert math.hypot(tx, ty) < 1.0
+        mx, my_, mm = table_creep(-u[0], u[1], u[2], 0.5, 1.0, ab, table)
+        assert (mx, my_, mm) == pytest.approx((-tx, ty, tm), abs=1e-15)
+        nx, ny, nm = table_creep(u[0], -u[1], -u[2], 0.5, 1.0, ab, table)
+        assert (nx, ny, nm) == pytest.approx((tx, -ty, -tm), abs=1e-12)
+
+
+def test_shipped_per_point_vehicle_is_what_the_code_writes() -> None:
+    from railhunt.contact.shipped_layouts import s1002_uic60_per_point_toml
+
+    path = resources.files("railhunt") / "data" / "vehicles" / f"{PER_POINT}.toml"
+    assert path.read_text(encoding="utf-8") == s1002_uic60_per_point_toml()
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    assert data["wheel_rail"]["contact_mechanics"] == "per-point"
+
+
+def test_centred_mechanics_of_the_per_point_vehicle_is_s1002_uic60_table() -> None:
+    """The new vehicle with contact_mechanics='centred' and the heuristic law is the
+    s1002_uic60_table vehicle: the same state derivative to the bit."""
+    old = Model(railhunt.Vehicle.shipped("s1002_uic60_table"))
+    new = Model(railhunt.Vehicle.shipped(PER_POINT), creep_law="heuristic",
+                contact_mechanics="centred")  # fmt: skip
+    rng = np.random.default_rng(5)
+    x = rng.normal(size=old.n_state) * 1e-3
+    assert np.array_equal(old.derivative(x, 80.0), new.derivative(x, 80.0))
+
+
+def _layout_text(**wheel_rail: str) -> str:
+    path = resources.files("railhunt") / "data" / "vehicles" / f"{PER_POINT}.toml"
+    text = path.read_text(encoding="utf-8")
+    for key, value in wheel_rail.items():
+        text = text.replace(next(line for line in text.splitlines()
+                                 if line.startswith(f"{key} = ")), f"{key} = {value}", 1)
+    return text
+
+
+@pytest.mark.parametrize(("change", "message"), [
+    ({"contact_mechanics": '"everywhere"'}, "contact_mechanics = 'everywhere' is unknown"),
+    ({"contact": '"polynomial"'}, "'per-point' needs contact = 'profiles'"),
+    ({"contact_mechanics": '"centred"'}, "creep_law = 'exact-table' needs contact_mechanics"),
+    ({"poisson": "0.7"}, "poisson = 0.7 is invalid"),
+])  # fmt: skip
+def test_bad_layout_keys_get_one_clear_line(tmp_path, change, message) -> None:
+    path = tmp_path / "v.toml"
+    path.write_text(_layout_text(**change), encoding="utf-8")
+    with pytest.raises(LayoutError, match=message.replace("(", r"\(")):
+        railhunt.load_vehicle(path)
+
+
+def test_model_refuses_exact_table_without_per_point() -> None:
+    with pytest.raises(ValueError, match="'exact-table' is invalid with contact_mechanics"):
+        Model(railhunt.Vehicle.shipped("s1002_uic60_table"), creep_law="exact-table")
+    with pytest.raises(ValueError, match="needs profile contact"):
+        Model(railhunt.Vehicle.paper2019(), contact_mechanics="per-point")
