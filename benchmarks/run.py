@@ -336,6 +336,11 @@ def main(argv: list[str] | None = None) -> int:
     curves, curve_summary = curve_rows(vehicle, repeat)
     rows += curves
 
+    # Per-point contact mechanics against the centred model on the same vehicle (S1002/UIC60).
+    from contact_mechanics import contact_mechanics_rows
+
+    rows += contact_mechanics_rows(repeat, Row)
+
     # Periodic orbits and continuation (issue 4). The orbit case warms the compiled code;
     # the whole diagram is timed once (it takes seconds).
     from railhunt.analysis.continuation import bifurcation_diagram

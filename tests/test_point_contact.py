@@ -40,13 +40,14 @@ def models():
 
 
 def test_curvature_of_circles_at_any_slope() -> None:
-    """A circle of radius R has curvature 1/R wherever it is read, also at 60 degrees."""
+    """A circle of radius R has curvature 1/R wherever it is read, also at 60 degrees (a
+    quadratic fit over +-0.1 R of arc is 0.13 % high: the circle's quartic term)."""
     for radius in (0.013, 0.3):
         t = np.linspace(-1.2, 1.2, 20001)
         y, z = radius * np.sin(t), radius * (1.0 - np.cos(t))
         at = radius * np.sin(np.array([0.0, 0.5, 1.05]))
         k = profile_curvature(y, z, at, half_width=min(2e-3, 0.1 * radius))
-        assert np.allclose(k, 1.0 / radius, rtol=1e-4)
+        assert np.allclose(k, 1.0 / radius, rtol=2e-3)
 
 
 def test_centred_ellipse_and_coefficients_are_hertz_and_kalker(geometry) -> None:
@@ -149,7 +150,7 @@ def test_table_law_is_bounded_and_symmetric() -> None:
         u = rng.normal(size=3) * 10.0 ** rng.uniform(-2, 3)
         ab = rng.uniform(0, 11)
         tx, ty, tm = table_creep(u[0], u[1], u[2], 0.5, 1.0, ab, table)
-        assert math.hypot(tx, ty) < 1.0
+        assert math.hypot(tx, ty) <= 1.0
         mx, my_, mm = table_creep(-u[0], u[1], u[2], 0.5, 1.0, ab, table)
         assert (mx, my_, mm) == pytest.approx((-tx, ty, tm), abs=1e-15)
         nx, ny, nm = table_creep(u[0], -u[1], -u[2], 0.5, 1.0, ab, table)

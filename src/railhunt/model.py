@@ -343,7 +343,21 @@ def _point_tail(contact: object, material: tuple[float, float] | None, static_lo
         from railhunt.contact.creep_table import shipped_creep_table
 
         grid = shipped_creep_table().ab_grid
-    return point_contact(contact, shear, nu).kernel_tail(static_load, grid)
+    # A sweep builds a Model per point on the one (cached) contact table: its ellipses
+    # once, not per point (the Hertz solutions take about 0.1 s).
+    key = (id(contact), float(shear), float(nu))
+    hit = _POINT_CACHE.get(key)
+    if hit is None or hit[0] is not contact:
+        if len(_POINT_CACHE) >= 16:
+            _POINT_CACHE.pop(next(iter(_POINT_CACHE)))
+        hit = (contact, point_contact(contact, shear, nu))
+        _POINT_CACHE[key] = hit
+    return hit[1].kernel_tail(static_load, grid)
+
+
+#: Per-point ellipses by (contact table, shear modulus, Poisson's ratio); the table is kept
+#: with its entry, so that its id cannot be reused while the entry lives.
+_POINT_CACHE: dict[tuple[int, float, float], tuple[object, object]] = {}
 
 
 def _contact_table(contact: object) -> np.ndarray:
