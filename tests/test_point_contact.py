@@ -204,3 +204,23 @@ def test_model_refuses_exact_table_without_per_point() -> None:
         Model(railhunt.Vehicle.shipped("s1002_uic60_table"), creep_law="exact-table")
     with pytest.raises(ValueError, match="needs profile contact"):
         Model(railhunt.Vehicle.paper2019(), contact_mechanics="per-point")
+
+
+def test_contact_creep_command_tabulates_ellipse_coefficients_and_normal_force() -> None:
+    import json
+
+    from click.testing import CliRunner
+
+    from railhunt.cli import main
+
+    res = CliRunner().invoke(main, ["contact", "--creep", "--y-max", "2", "--step", "0.5",
+                                    "--amplitude", "1", "--load", "60", "--json"])  # fmt: skip
+    assert res.exit_code == 0, res.output
+    data = json.loads(res.output)
+    left = data["creep"]["left"]
+    delta = np.array(data["delta_left_rad"])
+    assert np.allclose(left["normal_force_n"], 60e3 / np.cos(delta), rtol=1e-12)
+    ab = np.array(left["a_m"]) / np.array(left["b_m"])
+    assert np.allclose(ab, left["a_over_b"]) and len(left["c33"]) == delta.size == 9
+    res = CliRunner().invoke(main, ["contact", "--creep", "--poisson", "0.6"])
+    assert res.exit_code == 2 and "--poisson" in res.output
