@@ -184,7 +184,8 @@ def slice_values(solver: Solver, a_over_b: float, sx: np.ndarray, sy: np.ndarray
                  ss: np.ndarray, poisson: float) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
     """Node values ``D`` of one ``a/b`` slice and the solver's coefficients there.
 
-    Only ``s_y >= 0`` is solved; ``D(s_x, -s_y, -s_s) = (D_x, -D_y, -D_m)(s_x, s_y, s_s)``
+    ``s_y`` is the coordinate of the lateral linear force ``u_y + u_s``. Only ``s_y >= 0`` is
+    solved; ``D(s_x, -s_y, -s_s) = (D_x, -D_y, -D_m)(s_x, s_y, s_s)``
     (the mirror ``y -> -y``) fills the rest (``sy`` and ``ss`` must be symmetric grids).
     """
     a = 5e-3 * math.sqrt(a_over_b)
@@ -196,12 +197,12 @@ def slice_values(solver: Solver, a_over_b: float, sx: np.ndarray, sy: np.ndarray
     my, ms = c23 / c22, c33 / c23
     out = np.zeros((sx.size, sy.size, ss.size, 3))
     half = sy.size // 2
-    ux_all, uy_all = _u_of_s(sx, P_CREEPAGE), _u_of_s(sy, P_CREEPAGE)
+    ux_all, uf_all = _u_of_s(sx, P_CREEPAGE), _u_of_s(sy, P_CREEPAGE)
     us_all = _u_of_s(ss, P_SPIN) / math.sqrt(1.0 + ms * ms)
     for i, ux in enumerate(ux_all):
         for j in range(half, sy.size):
-            uy = uy_all[j]
             for k, us in enumerate(us_all):
+                uy = uf_all[j] - us  # the grid's s_y is the lateral linear force u_y + u_s
                 lm = my * uy - ms * us
                 rho2 = ux * ux + uy * uy + us * us + lm * lm
                 if rho2 == 0.0:
@@ -273,5 +274,10 @@ def load_creep_table(path: object) -> CreepTable:
 def shipped_creep_table() -> CreepTable:
     """The creep table shipped with railhunt (read once)."""
     ref = resources.files("railhunt").joinpath(*SHIPPED)
+    if not ref.is_file():
+        raise ValueError("creep_law = 'exact-table' is not available in this installation: "
+                         "its table railhunt/data/creep/exact_table.npz has not been built "
+                         "(python -m railhunt.data.creep.build_creep_table, with the exact "
+                         "solver); use another creep law")  # fmt: skip
     with resources.as_file(ref) as path:
         return load_creep_table(path)

@@ -18,8 +18,10 @@ Kalker's linear law, so the linear limit is Kalker's exactly (``q = O(rho^2)``),
 table holds; every component of ``L A`` stays below 1 in magnitude (the moment's too:
 ``rho`` includes it) and the correction ``D`` is bounded everywhere, the full-slip limit
 included. ``D`` is tabulated on a uniform grid of ``s = sign(u) (1 - (1 + |u|)^(-p))``
-(the whole real line in ``[-1, 1]``, decades spread evenly) for ``u_x``, ``u_y``
-(``p = 1/2``) and the spin's full linear strength ``w = u_s sqrt(1 + m_s^2)`` (force and
+(the whole real line in ``[-1, 1]``, decades spread evenly) for ``u_x``, the lateral
+linear force ``u_y + u_s`` (``p = 1/2``: where lateral creepage and spin cancel, the
+lateral force changes sign along a plane of these coordinates, not across a diagonal of
+the grid) and the spin's full linear strength ``w = u_s sqrt(1 + m_s^2)`` (force and
 moment; ``p = 1/4``: the spin acts over four decades, its moment saturating long before
 its lateral force on a wide ellipse), and interpolated by tensor-product quadratic
 B-splines through the nodes (continuous first derivatives in all three creepages: Newton,
@@ -190,8 +192,9 @@ def table_creep(ux: float, uy: float, us: float, my: float, ms: float, ab_index:
         q = rho2 * inv * inv
         w = us * (math.sqrt(1.0 + ms * ms) if ks < 0.0 else ks)
         sx = 1.0 - 1.0 / math.sqrt(1.0 + ux)
-        sy = 1.0 - 1.0 / math.sqrt(1.0 + abs(uy))
-        if uy < 0.0:
+        uf = uy + us
+        sy = 1.0 - 1.0 / math.sqrt(1.0 + abs(uf))
+        if uf < 0.0:
             sy = -sy
         ss = 1.0 - 1.0 / math.sqrt(math.sqrt(1.0 + abs(w)))
         if w < 0.0:
