@@ -66,35 +66,26 @@ def _slip_traction(rx: float, ry: float, g: float, cx: float, cy: float):
 
 
 @njit(cache=True, fastmath=True)
-def _add_pair(s, i, jx, j, dpx, dpy, lo, hi, a, b, mx, my):
-    """``S_K += (A(K - I) - A(K - J)) dp`` over the contact, ``I = (i, j)``, ``J = (jx, j)``;
-    with ``jx = i - 1`` from the transport table ``b`` (``B(k) = A(k) - A(k + (1, 0))``).
-    Each grid row is one loop over slices indexed alike, which LLVM vectorises."""
+def _add_transport(s, i, j, dpx, dpy, lo, hi, b, mx, my):
+    """``S_K += B(K - I) dp`` over the contact, ``B(k) = A(k) - A(k + (1, 0))``: the change
+    ``dp`` of the traction of element ``I = (i, j)`` alone. One loop per grid row over
+    slices indexed alike, which LLVM vectorises."""
     off = my - 1 - j
     for ik in range(s.shape[1]):
         j0, j1 = lo[ik], hi[ik]
         if j1 < j0:
             continue
         n = j1 - j0 + 1
-        k1 = ik - i + mx
+        k = ik - i + mx
+        c0 = j0 + off
         sx = s[0, ik, j0:j1 + 1]
         sy = s[1, ik, j0:j1 + 1]
-        c0, c1 = j0 + off, j1 + off + 1
-        if jx == i - 1:
-            bx = b[0, k1, c0:c1]
-            bc = b[1, k1, c0:c1]
-            by = b[2, k1, c0:c1]
-            for t in range(n):
-                sx[t] += bx[t] * dpx + bc[t] * dpy
-                sy[t] += bc[t] * dpx + by[t] * dpy
-        else:
-            k2 = ik - jx + mx
-            ax, ac, ay = a[0, k1, c0:c1], a[1, k1, c0:c1], a[2, k1, c0:c1]
-            zx, zc, zy = a[0, k2, c0:c1], a[1, k2, c0:c1], a[2, k2, c0:c1]
-            for t in range(n):
-                cxy = ac[t] - zc[t]
-                sx[t] += (ax[t] - zx[t]) * dpx + cxy * dpy
-                sy[t] += cxy * dpx + (ay[t] - zy[t]) * dpy
+        bx = b[0, k, c0:c0 + n]
+        bc = b[1, k, c0:c0 + n]
+        by = b[2, k, c0:c0 + n]
+        for t in range(n):
+            sx[t] += bx[t] * dpx + bc[t] * dpy
+            sy[t] += bc[t] * dpx + by[t] * dpy
 
 
 @njit(cache=True)
@@ -117,9 +108,13 @@ def rolling_slip(inside, w, dx, a, p):
     Parameters as :func:`steady_rolling`; returns ``S`` (shape ``(2, mx, my)``, zero
     outside the contact).
     """
+    return _slip(inside, w, dx, transport_table(a), p)
+
+
+@njit(cache=True)
+def _slip(inside, w, dx, b, p):
     mx, my = inside.shape
     lo, hi = _row_ranges(inside)
-    b = transport_table(a)
     s = np.zeros((2, mx, my))
     for i in range(mx):
         for j in range(lo[i], hi[i] + 1):
@@ -128,8 +123,7 @@ def rolling_slip(inside, w, dx, a, p):
     for i in range(mx):
         for j in range(lo[i], hi[i] + 1):
             if p[0, i, j] != 0.0 or p[1, i, j] != 0.0:
-                # p_J at J = (i, j) alone: the segment (i - 1, i]
-                _add_pair(s, i, i - 1, j, p[0, i, j], p[1, i, j], lo, hi, a, b, mx, my)
+                _add_transport(s, i, j, p[0, i, j], p[1, i, j], lo, hi, b, mx, my)
     return s
 
 
@@ -230,8 +224,9 @@ def steady_rolling(inside, gbound, w, dx, a, p, tol, maxit, omega_h, omega_s, x,
                 xmax = max(xmax, abs(x[i, j]))
                 ymax = max(ymax, abs(y[i, j]))
     arm = math.sqrt(xmax * ymax) if ymax > 0.0 else max(xmax, 1e-300)
-    s = rolling_slip(inside, w, dx, a, p)
     b = transport_table(a)
+    s = _slip(inside, w, dx, b, p)
+    line = np.ascontiguousarray(a[:, :, my - 1])  # the offsets along one line, (3, 2 mx + 1)
     for i in range(mx):
         for j in range(lo[i], hi[i] + 1):
             g = gbound[i, j]
@@ -274,8 +269,8 @@ def steady_rolling(inside, gbound, w, dx, a, p, tol, maxit, omega_h, omega_s, x,
                     jx = i - 1
                     while jx >= 0 and state[jx, j] == ADHESION:
                         jx -= 1
-                    cx = a0x - a[0, mx + i - jx, my - 1]
-                    cy = a0y - a[2, mx + i - jx, my - 1]
+                    cx = a0x - line[0, mx + i - jx]
+                    cy = a0y - line[2, mx + i - jx]
                     ox, oy = p[0, i, j], p[1, i, j]
                     rx = s[0, i, j] - cx * ox
                     ry = s[1, i, j] - cy * oy
@@ -299,9 +294,9 @@ def steady_rolling(inside, gbound, w, dx, a, p, tol, maxit, omega_h, omega_s, x,
                         # the slip along this line only; the rest after the line
                         k1, k2 = mx - i, mx - jx
                         for ik in range(i0, i1 + 1):
-                            cxx = a[0, ik + k1, my - 1] - a[0, ik + k2, my - 1]
-                            cxy = a[1, ik + k1, my - 1] - a[1, ik + k2, my - 1]
-                            cyy = a[2, ik + k1, my - 1] - a[2, ik + k2, my - 1]
+                            cxx = line[0, ik + k1] - line[0, ik + k2]
+                            cxy = line[1, ik + k1] - line[1, ik + k2]
+                            cyy = line[2, ik + k1] - line[2, ik + k2]
                             s[0, ik, j] += cxx * dpx + cxy * dpy
                             s[1, ik, j] += cxy * dpx + cyy * dpy
                         line_change = max(line_change, abs(dpx), abs(dpy))
@@ -316,7 +311,7 @@ def steady_rolling(inside, gbound, w, dx, a, p, tol, maxit, omega_h, omega_s, x,
                 dpx = p[0, i, j] - save[2, i]
                 dpy = p[1, i, j] - save[3, i]
                 if dpx != 0.0 or dpy != 0.0:
-                    _add_pair(s, i, i - 1, j, dpx, dpy, lo, hi, a, b, mx, my)
+                    _add_transport(s, i, j, dpx, dpy, lo, hi, b, mx, my)
                 pmax = max(pmax, abs(p[0, i, j]), abs(p[1, i, j]))
         fx, fy, mz = _resultants(inside, x, y, p)
         change = max(abs(fx - fx0), abs(fy - fy0), abs(mz - mz0) / arm)
