@@ -1,105 +1,66 @@
-"""Benchmark rows of the per-point contact mechanics against the centred model.
+"""Benchmark rows of the contact mechanics (``python benchmarks/run.py --only creep``).
 
-The baseline is ``s1002_uic60_table`` (the paper's heuristic law on the centred
-coefficients, S1002/UIC60 1:40 tabulated geometry); the new model is the same vehicle with
-per-point mechanics (``s1002_uic60_per_point``: the same heuristic law; Polach's; Kalker's
-exact theory tabulated when its table is built). Both are timed in one run, alternately,
-and the minima over the repeats are compared (the targets: at most 1.5 times the
-baseline). Run alone with ``python benchmarks/contact_mechanics.py``.
+Per case (one patch, one set of creepages), warm: Kalker's exact theory of steady rolling
+on a 40 x 40 grid (target 50 ms: tables of it are to be built in minutes on 2 cores),
+the same with its default extrapolation from 20 x 20, a sweep of 200 cases of it, modified
+FASTSIM and FASTSIM on their default 50 x 50 grids, and a batch of 1000 modified-FASTSIM
+cases. The case is CONTACT's FASTSIM example (a/b = 2, large spin: a slip area over most
+of the patch). Wall times (medians); the CPU time of the process beside, which a shared
+machine inflates less.
 """
 
 from __future__ import annotations
 
+import statistics
 import time
 from collections.abc import Callable
 
 import numpy as np
-from numba import njit
 
-import railhunt
-from railhunt.kernel.rhs import rhs
-from railhunt.model import Model
+from railhunt import creep_forces
+from railhunt.mechanics.exact import exact_creep_forces
 
-#: New model's time over the baseline's, at most.
-TARGET = 1.5
-CALLS = 20000
+PATCH = dict(a=8e-3, b=4e-3, mu=0.3, normal_force=82e3, shear_modulus=8.2e10, poisson=0.28)
+CREEP = (0.0, -6.25e-4, 0.625)
+EXACT_TARGET = 0.050  # s per case, 40 x 40
 
 
-@njit(cache=True)
-def _calls(n: int, x: np.ndarray, v: float, s: object, out: np.ndarray) -> float:
-    acc = 0.0
-    for _ in range(n):
-        rhs(0.0, x, v, s, out)
-        acc += out[0]
-    return acc
-
-
-def _hunting_state(model: Model) -> np.ndarray:
-    """A state on the way to a hunting cycle at 300 km/h (wheelsets displaced 3-5 mm)."""
-    res = railhunt.simulate(model.vehicle, 300.0, duration=3.0,
-                            excitation=railhunt.InitialDisplacement(0.006), model=model)
-    return np.ascontiguousarray(res.x[-1])
-
-
-def rhs_seconds(model: Model, x: np.ndarray, repeat: int) -> float:
-    """Least time (s) of one right-hand side call at state ``x`` and 300 km/h."""
-    v, s = model.args(300.0 / 3.6)
-    out = np.empty(model.n_state)
-    _calls(10, x, v, s, out)
-    best = float("inf")
+def _best(fn: Callable[[], object], repeat: int) -> tuple[float, float]:
+    """Median wall time and median CPU time of this process (s), warm."""
+    fn()
+    wall, cpu = [], []
     for _ in range(repeat):
-        t0 = time.perf_counter()
-        _calls(CALLS, x, v, s, out)
-        best = min(best, (time.perf_counter() - t0) / CALLS)
-    return best
+        t0, c0 = time.perf_counter(), time.process_time()
+        fn()
+        wall.append(time.perf_counter() - t0)
+        cpu.append(time.process_time() - c0)
+    return statistics.median(wall), statistics.median(cpu)
 
 
-def contact_mechanics_rows(repeat: int, row: Callable) -> list:
-    """Rows: rhs per call and one critical-speed search, baseline and per-point."""
-    base = Model(railhunt.Vehicle.shipped("s1002_uic60_table"))
-    per_point = railhunt.Vehicle.shipped("s1002_uic60_per_point")
-    models = {"heuristic": Model(per_point), "polach": Model(per_point, creep_law="polach")}
-    try:
-        models["exact-table"] = Model(per_point, creep_law="exact-table")
-    except ValueError as exc:  # its table is not built in this installation
-        print(f"per-point exact-table: not timed ({exc})")
-    x = _hunting_state(base)
-    times = {"baseline": float("inf"), **dict.fromkeys(models, float("inf"))}
-    for _ in range(max(repeat, 3)):
-        times["baseline"] = min(times["baseline"], rhs_seconds(base, x, 3))
-        for law, m in models.items():
-            times[law] = min(times[law], rhs_seconds(m, x, 3))
-    rows = [row("rhs per call, s1002_uic60_table (centred, heuristic): baseline",
-                times["baseline"])]
-    for law in models:
-        ratio = times[law] / times["baseline"]
-        rows.append(row(f"rhs per call, per-point {law} ({ratio:.2f}x; target "
-                        f"{TARGET:g}x)", times[law], TARGET * times["baseline"]))
-    searches = {"baseline": float("inf"), "per-point": float("inf")}
-    vehicles = {"baseline": base.vehicle, "per-point": per_point}
-    for v in vehicles.values():
-        railhunt.critical_speed(v, tol_kmh=5.0)  # warm-up (compilation, caches)
-    for _ in range(max(1, repeat // 2)):
-        for name, v in vehicles.items():
-            t0 = time.perf_counter()
-            railhunt.critical_speed(v)
-            searches[name] = min(searches[name], time.perf_counter() - t0)
-    ratio = searches["per-point"] / searches["baseline"]
-    rows.append(row("critical-speed search, s1002_uic60_table: baseline", searches["baseline"]))
-    rows.append(row(f"critical-speed search, s1002_uic60_per_point ({ratio:.2f}x; target "
-                    f"{TARGET:g}x)", searches["per-point"], TARGET * searches["baseline"]))
+def creep_rows(repeat: int, row) -> list:
+    """The rows (``row(case, seconds, target)``) of the contact mechanics."""
+    mu_n = PATCH["mu"] * PATCH["normal_force"]
+    rows = []
+    wall, cpu = _best(lambda: exact_creep_forces(*CREEP, PATCH["a"], PATCH["b"], mu_n,
+                                                 PATCH["shear_modulus"], PATCH["poisson"],
+                                                 grid=(40, 40), extrapolate=False),
+                      max(repeat, 5))  # fmt: skip
+    rows.append(row(f"creep forces: exact theory, 40 x 40 grid, per case (CPU "
+                    f"{cpu * 1e3:.0f} ms)", wall, EXACT_TARGET))
+    wall, cpu = _best(lambda: creep_forces(*CREEP, law="exact", **PATCH), max(repeat, 5))
+    rows.append(row(f"creep forces: exact theory, 40 x 40 and 20 x 20 (law 'exact'), per "
+                    f"case (CPU {cpu * 1e3:.0f} ms)", wall))
+    # a table's worth: a sweep of 200 cases on one patch (each started from the last)
+    eta = np.linspace(-3e-3, 3e-3, 200)
+    wall, cpu = _best(lambda: creep_forces(0.0, eta, 0.625, law="exact", **PATCH), 1)
+    rows.append(row(f"creep forces: exact theory (law 'exact'), sweep of 200 cases (CPU "
+                    f"{cpu:.1f} s)", wall))
+    for law in ("fastsim-modified", "fastsim"):
+        wall, _ = _best(lambda law=law: creep_forces(*CREEP, law=law, **PATCH),
+                        max(repeat, 20))
+        rows.append(row(f"creep forces: {law}, 50 x 50, per case", wall))
+    eta = np.linspace(-5e-3, 5e-3, 1000)
+    wall, _ = _best(lambda: creep_forces(0.0, eta, 0.625, law="fastsim-modified", **PATCH),
+                    repeat)
+    rows.append(row("creep forces: fastsim-modified, batch of 1000 cases", wall))
     return rows
-
-
-if __name__ == "__main__":
-    from dataclasses import dataclass
-
-    @dataclass
-    class _Row:
-        case: str
-        seconds: float
-        target: float | None = None
-
-    for r in contact_mechanics_rows(3, _Row):
-        target = "" if r.target is None else f"  (target <= {r.target:.3g} s)"
-        print(f"{r.case}: {r.seconds:.4g} s{target}")

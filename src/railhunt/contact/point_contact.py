@@ -30,8 +30,9 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from railhunt.contact.hertz import hertz_contact, kalker_coefficients
 from railhunt.kernel.layout import PER_POINT, PointColumn
+from railhunt.mechanics.coefficients import kalker_coefficients
+from railhunt.mechanics.hertz import hertz_contact
 from railhunt.results import Columns, ResultDisplay, Row
 
 __all__ = ["AB_RANGE", "PointContact", "point_contact"]
@@ -61,12 +62,11 @@ def _ratio_bounds(poisson: float) -> tuple[float, float]:
 
 
 def contact_coefficients(a_over_b: float, poisson: float) -> tuple[float, float, float, float]:
-    """Kalker's ``(C11, C22, C23, C33)`` at ``a/b`` in :data:`AB_RANGE`.
-
-    Kalker's Table E.3 (:func:`railhunt.contact.hertz.kalker_coefficients`), held at its
-    ends (a/b 0.1 and 10) beyond them.
-    """
-    return kalker_coefficients(min(max(a_over_b, 0.1), 10.0), poisson)
+    """Kalker's ``(C11, C22, C23, C33)`` at ``a/b`` in :data:`AB_RANGE`
+    (:func:`railhunt.mechanics.coefficients.kalker_coefficients`: Table E.3, extended to
+    0.05 ... 20 by the exact theory's linear limit)."""
+    c = kalker_coefficients(min(max(a_over_b, AB_RANGE[0]), AB_RANGE[1]), poisson)
+    return float(c[0]), float(c[1]), float(c[2]), float(c[3])
 
 
 @dataclass(frozen=True, repr=False)
