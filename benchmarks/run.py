@@ -5,6 +5,7 @@ Run from the repository root::
     python benchmarks/run.py            # 5 repeats per case
     python benchmarks/run.py --quick    # fewer repeats
     python benchmarks/run.py --repeat 9
+    python benchmarks/run.py --only creep   # the contact mechanics' rows alone
 
 Times are medians over the repeats, measured warm (after a first call has compiled or
 loaded the numba functions). The exit code is 0 whatever the outcome: this is a report,
@@ -214,8 +215,20 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=5, help="repeats per case (default 5)")
     parser.add_argument("--quick", action="store_true", help="fewer repeats (2, baseline 1)")
+    parser.add_argument("--only", choices=["creep"], help="run only these rows")
     args = parser.parse_args(argv)
     repeat = 2 if args.quick else max(1, args.repeat)
+    if args.only == "creep":
+        from contact_mechanics import creep_rows
+
+        rows = creep_rows(repeat, Row)
+        print(f"railhunt {railhunt.__version__}, Python {sys.version.split()[0]}, "
+              f"{repeat} repeats\n")
+        print_table(rows)
+        misses = [r.case for r in rows if r.verdict == "FAIL"]
+        print(f"SUMMARY: {len(misses)} missed: " + "; ".join(misses) if misses
+              else "SUMMARY: all targets met")
+        return 0
     repeat_baseline = 1 if args.quick else min(repeat, 3)  # the baseline takes seconds
 
     vehicle = railhunt.Vehicle.paper2019()
@@ -260,6 +273,11 @@ def main(argv: list[str] | None = None) -> int:
     warm_up_curves()
     curves, curve_summary = curve_rows(vehicle, repeat)
     rows += curves
+
+    # Per-point contact mechanics against the centred model on the same vehicle (S1002/UIC60).
+    from per_point import contact_mechanics_rows
+
+    rows += contact_mechanics_rows(repeat, Row)
 
     # Periodic orbits and continuation (issue 4). The orbit case warms the compiled code;
     # the whole diagram is timed once (it takes seconds).
@@ -314,6 +332,11 @@ def main(argv: list[str] | None = None) -> int:
 
     t_cold = cold_start()
     rows.append(Row("import + first call (cold process, numba cache warm)", t_cold, 5.0))
+
+    # Contact mechanics: the exact theory's and FASTSIM's cost per case.
+    from contact_mechanics import creep_rows
+
+    rows += creep_rows(repeat, Row)
 
     # The global studies (issue 19): a fold speed, a Sobol study on 2 workers.
     from global_studies import global_study_rows

@@ -309,7 +309,9 @@ def test_kalker_table_values_and_interpolation():
         c = kalker_coefficients(g, 0.0)
         assert c[0] == pytest.approx(c[1])
     with pytest.raises(ValueError, match="a_over_b"):
-        kalker_coefficients(20.0, 0.3)
+        kalker_coefficients(25.0, 0.3)  # the table (extended) covers a/b = 0.05 ... 20
+    with pytest.raises(ValueError, match="a_over_b"):
+        kalker_coefficients(0.04, 0.3)
     with pytest.raises(ValueError, match="nu"):
         kalker_coefficients(1.0, 0.7)
 

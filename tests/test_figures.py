@@ -34,6 +34,7 @@ from railhunt.plots import (
     bifurcation_family_figure,
     bifurcation_figure,
     contact_geometry_figure,
+    creep_figure,
     curve_entry_figure,
     hunting_frequency_figure,
     root_locus_figure,
@@ -278,6 +279,29 @@ def test_spectrogram_image():
 @compare
 def test_stability_map_image():
     return stability_map_figure(_stability_map())
+
+
+def _creep_curves():
+    """Creep curves of three laws written by hand (tanh, a cubic, a line): no solver runs."""
+    from railhunt.mechanics.curves import CreepCurves
+
+    eta = np.linspace(0.0, 6e-3, 25)
+    mu_n = 0.3 * 5e4
+    cv = CreepCurves("eta", eta, {"xi": 0.0, "phi": 0.5}, 6e-3, 4e-3, 5e4, 0.3, 8.2e10, 0.28)
+    s = eta / 2e-3
+    for law, f, m in (("exact", -np.tanh(s), 0.1 * s * np.exp(-s)),
+                      ("fastsim-modified", -np.minimum(1.0, s - s**2 / 3 + s**3 / 27),
+                       0.08 * s * np.exp(-0.8 * s)),
+                      ("linear", -s, 0.2 * s)):  # fmt: skip
+        cv.fx[law] = 0.0 * eta
+        cv.fy[law] = f * mu_n
+        cv.mz[law] = m * mu_n * cv.c
+    return cv
+
+
+@compare
+def test_creep_curves_image():
+    return creep_figure(_creep_curves())
 
 
 @compare

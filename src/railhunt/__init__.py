@@ -24,6 +24,7 @@ Main entry points (imported lazily, so ``import railhunt`` stays fast)::
     contact_geometry                 rigid contact: r_L, r_R, contact angles, roll vs y
     equivalent_conicity              EN 15302 equivalent conicity of a Delta r table
     creep_coefficients               Hertz ellipse + Kalker's f11, f22, f23, f33
+    creep_forces                     creep forces and spin moment of a patch (FASTSIM, exact, ...)
     sweep, read_results              parameter studies on all cores or a Dask cluster
     table1_study, section_changes    the paper's Table 1 study and its Fig. 12 sections
     reproduce                        the paper's Figs. 6-13 and an HTML report
@@ -80,9 +81,11 @@ _EXPORTS = {
     "read_profile": "railhunt.contact.profiles",
     "s1002": "railhunt.contact.profiles",
     "uic60": "railhunt.contact.profiles",
-    "hertz_contact": "railhunt.contact.hertz",
-    "kalker_coefficients": "railhunt.contact.hertz",
-    "creep_coefficients": "railhunt.contact.hertz",
+    "hertz_contact": "railhunt.mechanics.hertz",
+    "kalker_coefficients": "railhunt.mechanics.coefficients",
+    "creep_coefficients": "railhunt.mechanics.hertz",
+    "creep_forces": "railhunt.mechanics.laws",
+    "CreepForces": "railhunt.mechanics.laws",
     "fit_polynomials": "railhunt.contact.fit",
     "sweep": "railhunt.studies.sweep",
     "read_results": "railhunt.studies.store",
@@ -125,11 +128,12 @@ if TYPE_CHECKING:
         ContactGeometry as ContactGeometry,
         contact_geometry as contact_geometry,
     )
-    from railhunt.contact.hertz import (
+    from railhunt.mechanics.coefficients import kalker_coefficients as kalker_coefficients
+    from railhunt.mechanics.hertz import (
         creep_coefficients as creep_coefficients,
         hertz_contact as hertz_contact,
-        kalker_coefficients as kalker_coefficients,
     )
+    from railhunt.mechanics.laws import CreepForces as CreepForces, creep_forces as creep_forces
     from railhunt.curve import Curve as Curve
     from railhunt.contact.profiles import (
         Profile as Profile,

@@ -27,6 +27,7 @@ from railhunt.kernel.layout import (
     N_ROUTE,
     N_STATE,
     N_WR,
+    NO_CREEP_TABLE,
     STATE_NAMES,
     WHEELSET_Y,
     WR,
@@ -64,6 +65,13 @@ class Model:
         (creepage reference) and ``a`` are still used. Default: the geometry of the
         vehicle's :class:`railhunt.vehicle.ContactSpec` (its ``[contact]`` section) if it
         has one, else the polynomials.
+    contact_mechanics : {"centred", "per-point"}, optional
+        For every wheelset instead of its layout's ``contact_mechanics``:
+        ``"centred"``, the vehicle's coefficients ``f11 ... f33`` and the static wheel
+        load; ``"per-point"``, each contact point's own Hertz ellipse, Kalker
+        coefficients and normal force from the wheel's equilibrium
+        (:mod:`railhunt.kernel.point_contact`; needs a profile contact table). The creep
+        law ``"exact-table"`` (Kalker's exact theory, tabulated) needs ``"per-point"``.
 
     Attributes
     ----------
@@ -77,15 +85,20 @@ class Model:
     """
 
     def __init__(
-        self, vehicle: Vehicle, creep_law: str | None = None, contact: object = None
+        self, vehicle: Vehicle, creep_law: str | None = None, contact: object = None,
+        contact_mechanics: str | None = None,
     ) -> None:
         from railhunt.arguments import check_vehicle
+        from railhunt.layout.parse import CONTACT_MECHANICS
 
         check_vehicle(vehicle)
         if creep_law is not None and creep_law not in CREEP_LAWS:
             raise ValueError(
                 f"creep_law = {creep_law!r} is invalid: must be one of {sorted(CREEP_LAWS)}"
             )
+        if contact_mechanics is not None and contact_mechanics not in CONTACT_MECHANICS:
+            raise ValueError(f"contact_mechanics = {contact_mechanics!r} is invalid: must be "
+                             f"one of {', '.join(CONTACT_MECHANICS)}")  # fmt: skip
         asm = vehicle.assembly
         self.vehicle = vehicle
         #: The state vector's slots (bodies, coordinates, dampers) of this vehicle.
@@ -96,6 +109,25 @@ class Model:
         wr = asm.wheel_rail.copy()
         if creep_law is not None:
             wr[:, WR.CREEP_LAW] = CREEP_LAWS[creep_law]
+        n_ws = wr.shape[0]
+        mechanics = (tuple(asm.contact_mechanics) or ("centred",) * n_ws
+                     if contact_mechanics is None else (contact_mechanics,) * n_ws)  # fmt: skip
+        #: Each wheelset's contact mechanics, ``"centred"`` or ``"per-point"``.
+        self.contact_mechanics: tuple[str, ...] = mechanics
+        exact = [int(code) == CREEP_LAWS["exact-table"] for code in wr[:, WR.CREEP_LAW]]
+        for j in range(n_ws):
+            if exact[j] and mechanics[j] != "per-point":
+                raise ValueError("creep_law = 'exact-table' is invalid with contact_mechanics "
+                                 f"= {mechanics[j]!r}: it needs 'per-point' (each contact's "
+                                 "own ellipse)")  # fmt: skip
+        if "per-point" in mechanics and contact is None:
+            raise ValueError("contact_mechanics = 'per-point' is invalid for this vehicle: it "
+                             "needs profile contact (a [contact] section, or contact=)")
+        creep_table = NO_CREEP_TABLE
+        if any(exact):
+            from railhunt.contact.creep_table import shipped_creep_table
+
+            creep_table = shipped_creep_table().kernel_array
         if contact is not None:
             # The creepages are measured from r0: a centred wheelset on a table whose
             # radius differs from r0 would carry a steady longitudinal creepage that eats
@@ -109,7 +141,14 @@ class Model:
                     f"(set r0 = {r_centre!r})"
                 )
             table = _contact_table(contact)
-            wr = wheel_rail_rows([np.concatenate([row[:WR.TABLE], table]) for row in wr])
+            rows = []
+            for j, row in enumerate(wr):
+                tail = np.zeros(0)
+                if mechanics[j] == "per-point":
+                    tail = _point_tail(contact, asm.materials[j] if asm.materials else None,
+                                       float(row[WR.N]), exact[j])  # fmt: skip
+                rows.append(np.concatenate([row[:WR.TABLE], table, tail]))
+            wr = wheel_rail_rows(rows)
         self.contact = contact
         self.mass = asm.mass
         k_susp, self.C = asm.K_suspension, asm.C
@@ -137,6 +176,7 @@ class Model:
             suspension=np.ascontiguousarray(-inv_m[:, None] * np.hstack([k_susp, self.C])),
             scratch=np.zeros(3 * len(self.mass)),
             stop_wheelset=asm.stop_track.copy(),
+            creep_table=creep_table,
         )
 
     @property
@@ -290,6 +330,34 @@ def wheel_rail_rows(rows: list[np.ndarray]) -> np.ndarray:
     for j, r in enumerate(rows):
         out[j, : len(r)] = r
     return out
+
+
+def _point_tail(contact: object, material: tuple[float, float] | None, static_load: float,
+                exact: bool) -> np.ndarray:  # fmt: skip
+    """The per-point block of a wheel/rail row (:meth:`PointContact.kernel_tail`)."""
+    from railhunt.contact.point_contact import POISSON, SHEAR_MODULUS, point_contact
+
+    shear, nu = material if material is not None else (SHEAR_MODULUS, POISSON)
+    grid = None
+    if exact:
+        from railhunt.contact.creep_table import shipped_creep_table
+
+        grid = shipped_creep_table().ab_grid
+    # A sweep builds a Model per point on the one (cached) contact table: its ellipses
+    # once, not per point (the Hertz solutions take about 0.1 s).
+    key = (id(contact), float(shear), float(nu))
+    hit = _POINT_CACHE.get(key)
+    if hit is None or hit[0] is not contact:
+        if len(_POINT_CACHE) >= 16:
+            _POINT_CACHE.pop(next(iter(_POINT_CACHE)))
+        hit = (contact, point_contact(contact, shear, nu))
+        _POINT_CACHE[key] = hit
+    return hit[1].kernel_tail(static_load, grid)
+
+
+#: Per-point ellipses by (contact table, shear modulus, Poisson's ratio); the table is kept
+#: with its entry, so that its id cannot be reused while the entry lives.
+_POINT_CACHE: dict[tuple[int, float, float], tuple[object, object]] = {}
 
 
 def _contact_table(contact: object) -> np.ndarray:

@@ -6,7 +6,8 @@ creepages (the spin term is left out, as in the usual T-gamma wear index). It is
 from the kernel's own contact functions (:func:`railhunt.kernel.wheelset.wheel_creep`,
 :func:`railhunt.kernel.contact.wheel_geometry`, the wheel loads of
 :func:`railhunt.kernel.rhs.wheel_loads`) at the state asked for: no second copy of the
-contact equations.
+contact equations. With per-point contact mechanics, those of
+:func:`railhunt.kernel.point_contact.point_wheel_creep`.
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ import math
 import numpy as np
 
 from railhunt.kernel.contact import wheel_geometry
+from railhunt.kernel.point_contact import point_wheel_creep, uses_per_point
 from railhunt.kernel.rhs import wheel_loads
 from railhunt.kernel.track import alignment
 from railhunt.kernel.wheelset import wheel_creep
@@ -56,6 +58,11 @@ def wheelset_creep(model: Model, speed: float, x: np.ndarray, j: int = 0,
     yr, _ = alignment(pos, s.track, s.track_samples)
     wr = s.wheel_rail[j]
     q_l, q_r, track_rate = wheel_loads(pos, v, wr, s.route)
+    if uses_per_point(wr):
+        (fxl, fyl, mzl, fxr, fyr, mzr, xl, yl, sl, xr, yr_, sr, *_) = point_wheel_creep(
+            x[iy] - yr, x[nq + iy], math.cos(x[ip]), math.sin(x[ip]),
+            x[nq + ip] + track_rate, v, wr, q_l, q_r, s.creep_table)
+        return np.array([[fxl, fyl, mzl, xl, yl, sl], [fxr, fyr, mzr, xr, yr_, sr]])
     r_l, r_r, d_l, d_r = wheel_geometry(x[iy] - yr, wr)
     out = wheel_creep(r_l, r_r, math.cos(d_l), math.sin(d_l), math.cos(d_r), math.sin(d_r),
                       math.cos(x[ip]), math.sin(x[ip]), x[nq + iy], x[nq + ip] + track_rate, v,

@@ -29,6 +29,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from railhunt.contact.conicity import ConicityError, equivalent_conicity
+from railhunt.contact.curvature import surface_curvature
 from railhunt.contact.profiles import Profile, ProfileError, s1002, uic60
 from railhunt.results import Columns, ResultDisplay, Row
 
@@ -64,6 +65,13 @@ class ContactGeometry(ResultDisplay):
         Nominal rolling radius (m) (wheel radius at the tape circle).
     params : dict
         Track/wheelset parameters used.
+    wheel_curvature_left, wheel_curvature_right : numpy.ndarray or None
+        Transverse curvature of each wheel's surface at its contact point (1/m), Hertz's
+        sign: positive convex, negative for a hollow tread, 0 on a straight flank
+        (:func:`railhunt.contact.curvature.surface_curvature`, smoothed over +-2 mm of
+        arc).
+    rail_curvature_left, rail_curvature_right : numpy.ndarray or None
+        The same for each rail (the crown positive).
     """
 
     y: np.ndarray
@@ -81,6 +89,10 @@ class ContactGeometry(ResultDisplay):
     jump: np.ndarray
     r0: float
     params: dict = field(default_factory=dict)
+    wheel_curvature_left: np.ndarray | None = None
+    wheel_curvature_right: np.ndarray | None = None
+    rail_curvature_left: np.ndarray | None = None
+    rail_curvature_right: np.ndarray | None = None
 
     @property
     def delta_r(self) -> np.ndarray:
@@ -187,6 +199,7 @@ def contact_geometry(
     y_step: float = 1e-4,
     sample_step: float = 1e-5,
     jump_threshold: float = 1e-3,
+    curvature_window: float = 2e-3,
 ) -> ContactGeometry:
     """Rigid contact geometry of a symmetric wheelset on its rails over ``|y| <= y_max``.
 
@@ -214,6 +227,9 @@ def contact_geometry(
     jump_threshold : float
         Lateral travel of a contact point between two steps above which a jump
         (two-point contact) is flagged (m).
+    curvature_window : float
+        Half-width (m of arc) over which the profiles' transverse curvatures at the
+        contact points are fitted (:mod:`railhunt.contact.curvature`).
 
     Returns
     -------
@@ -230,6 +246,7 @@ def contact_geometry(
         "y_step": (y_step, 1e-6, 1e-3),
         "sample_step": (sample_step, 1e-6, 1e-4),
         "jump_threshold": (jump_threshold, 1e-5, 0.05),
+        "curvature_window": (curvature_window, 1e-5, 0.02),
     }
     for name, (value, lo, hi) in checks.items():
         if not (isinstance(value, int | float) and math.isfinite(value) and lo <= value <= hi):
@@ -300,6 +317,10 @@ def contact_geometry(
         contact_right=np.column_stack([out["yr"], out["zr"]]),
         wheel_left=out["wl"], wheel_right=out["wr"], rail_left=out["tl"],
         rail_right=out["tr"], jump=jump, r0=r0, params=params,
+        wheel_curvature_left=surface_curvature(wheel, out["wl"], curvature_window),
+        wheel_curvature_right=surface_curvature(wheel, out["wr"], curvature_window),
+        rail_curvature_left=surface_curvature(rail_c, out["tl"], curvature_window),
+        rail_curvature_right=surface_curvature(rail_c, out["tr"], curvature_window),
     )
 
 

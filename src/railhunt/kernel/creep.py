@@ -42,6 +42,7 @@ class CreepLaw(IntEnum):
     LINEAR = 2  # Kalker's linear law, no saturation
     POLACH = 3  # Polach's saturation per wheel
     VERMEULEN_JOHNSON = 4  # Vermeulen-Johnson: Eq. 28's cubic per wheel on f11 xi_x, f22 xi_y
+    EXACT_TABLE = 5  # Kalker's exact theory, tabulated (per-point contact mechanics only)
 
 
 #: Creep-law names (as users write them) -> codes.

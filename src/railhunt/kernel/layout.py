@@ -247,7 +247,13 @@ class WR(IntEnum):
     After ``TABLE`` comes either nothing (``TABLE`` holds 0: the polynomial geometry of
     Eqs. 32-33) or a contact table on a uniform grid of the wheelset's lateral
     displacement: ``[n, y0, dy, r_L[n], r_R[n], delta_L[n], delta_R[n]]`` starting at
-    ``TABLE`` (see :func:`railhunt.kernel.contact.wheel_geometry`).
+    ``TABLE`` (see :func:`railhunt.kernel.contact.wheel_geometry`). A table may be
+    followed by the per-point contact mechanics (:class:`PointColumn`): at
+    ``p = TABLE + 3 + 4 n`` the code :data:`PER_POINT` (0 or absent: the vehicle's
+    centred coefficients, as before), at ``p + 1`` the cube root of the static load
+    ``N^(1/3)``, then for each grid point the columns of the left wheel and those of the
+    right wheel (``2 N_POINT_COLUMNS`` values per point, contiguous:
+    :func:`railhunt.kernel.point_contact.point_columns` reads two blocks).
     """
 
     F11 = 0  # longitudinal creep coefficient (N)
@@ -279,6 +285,33 @@ class WR(IntEnum):
 
 #: Length of the wheel/rail vector without a contact table (the 0 in ``TABLE`` included).
 N_WR = WR.TABLE + 1
+
+#: Code after a contact table: the contact mechanics are computed at each contact point.
+PER_POINT = 1
+
+
+class PointColumn(IntEnum):
+    """Per-point contact mechanics: the columns tabulated for each wheel along ``y``.
+
+    With ``Q`` the wheel's vertical load and ``N0 = Q / cos(delta)`` its normal force
+    without creep forces, the Hertz ellipse's ``c = sqrt(a b) = C1 Q^(1/3)`` and Kalker's
+    coefficients ``f11 = K11 Q^(2/3)``, ``f22 = K22 Q^(2/3)``, ``f23 = K23 Q``,
+    ``f33 = K33 Q^(4/3)`` (the powers of ``1/cos(delta)`` of ``N0`` are in the columns).
+    ``AB`` is the index of the creep table's slice nearest the ellipse's ``a/b``
+    (:mod:`railhunt.kernel.creep_table`; interpolated in ``y``, fractional between points
+    of different slices).
+    """
+
+    C1 = 0  # sqrt(a b) per Q^(1/3) (m / N^(1/3))
+    K11 = 1  # f11 per Q^(2/3) (N^(1/3))
+    K22 = 2  # f22 per Q^(2/3) (N^(1/3))
+    K23 = 3  # f23 per Q (m)
+    K33 = 4  # f33 per Q^(4/3) (m^2 / N^(1/3))
+    AB = 5  # the creep table's slice of this a/b (index)
+
+
+#: Number of per-point columns of one wheel.
+N_POINT_COLUMNS = len(PointColumn)
 
 
 class DamperParam(IntEnum):
@@ -325,6 +358,8 @@ N_ROUTE = len(RouteColumn)
 
 #: No bump stop acts against the track (default of ``SystemArrays.stop_wheelset``).
 NO_TRACK_STOPS = np.zeros(0, dtype=np.int64)
+#: No creep table (default of ``SystemArrays.creep_table``).
+NO_CREEP_TABLE = np.zeros(0)
 
 
 class SystemArrays(NamedTuple):
@@ -383,6 +418,9 @@ class SystemArrays(NamedTuple):
         wheelset, the track input with the wheelset's delay), -1 for a stop between two
         bodies of the vehicle. Shorter than ``stop`` (default: empty): the missing stops
         are between bodies.
+    creep_table : numpy.ndarray
+        The tabulated creep law of per-point contact mechanics
+        (:mod:`railhunt.kernel.creep_table`), empty when no wheelset uses it.
     """
 
     linear: np.ndarray
@@ -403,3 +441,4 @@ class SystemArrays(NamedTuple):
     suspension: np.ndarray
     scratch: np.ndarray
     stop_wheelset: np.ndarray = NO_TRACK_STOPS
+    creep_table: np.ndarray = NO_CREEP_TABLE

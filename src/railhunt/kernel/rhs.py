@@ -96,7 +96,7 @@ def wheelset_track_forces(
     q_l, q_r, track_rate = wheel_loads(pos, v, wr, s.route)
     fy, mz, f_l, f_r = wheelset_contact(x[iy] - yr, x[nq + iy], x[ip], x[ip] - slope,
                                         x[nq + ip], x[nq + ip] + track_rate, v, wr,
-                                        q_l, q_r)  # fmt: skip
+                                        q_l, q_r, s.creep_table)  # fmt: skip
     return fy, mz, f_l, f_r, q_l, q_r
 
 
@@ -191,6 +191,7 @@ def rhs(t: float, x: np.ndarray, v: float, s: SystemArrays, out: np.ndarray) -> 
     wr, ws, delay, trk, trs = s.wheel_rail, s.wheelsets, s.wheelset_delay, s.track, s.track_samples
     stop_rows, stop_acc, stop, route = s.stop_rows, s.stop_acc, s.stop, s.route
     geo, susp, bodies, body_delay = s.scratch, s.suspension, s.bodies, s.body_delay
+    creep = s.creep_table
     nq = lin.shape[0]  # coordinates x[:nq], rates x[nq:2nq], damper forces after
     fz = 2 * nq
     curved = route.shape[0] > 0
@@ -246,7 +247,8 @@ def rhs(t: float, x: np.ndarray, v: float, s: SystemArrays, out: np.ndarray) -> 
         else:
             q_l, q_r, track_rate = n_load, n_load, 0.0
         fy, mz, _, _ = wheelset_contact(x[iy] - yr, x[nq + iy], x[ip], x[ip] - slope,
-                                        x[nq + ip], x[nq + ip] + track_rate, v, row, q_l, q_r)
+                                        x[nq + ip], x[nq + ip] + track_rate, v, row, q_l, q_r,
+                                        creep)
         out[nq + iy] += fy * row[WR.INV_MW]
         out[nq + ip] += mz * row[WR.INV_JW]
 

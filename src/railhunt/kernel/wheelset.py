@@ -5,7 +5,9 @@ transformation into track coordinates, plus the lateral components of the normal
 (gravitational stiffness) and the gravitational yaw moment. On straight track both wheels
 carry the static load ``N = W g / 2`` and the creep coefficients are the vehicle's; in a
 curve each wheel has its own quasi-static load ``Q`` and the coefficients follow it
-(Hertz: ``f11, f22 ~ Q^(2/3)``, ``f23 ~ Q``, ``f33 ~ Q^(4/3)``).
+(Hertz: ``f11, f22 ~ Q^(2/3)``, ``f23 ~ Q``, ``f33 ~ Q^(4/3)``). A wheel/rail vector with
+per-point contact mechanics (:mod:`railhunt.kernel.point_contact`) takes each contact's own
+ellipse, coefficients and normal force instead.
 """
 
 from __future__ import annotations
@@ -17,13 +19,14 @@ from numba import njit
 
 from railhunt.kernel.contact import wheel_geometry
 from railhunt.kernel.creep import CreepLaw, heuristic_saturation, polach_saturation
-from railhunt.kernel.layout import WR
+from railhunt.kernel.layout import NO_CREEP_TABLE, WR
+from railhunt.kernel.point_contact import point_wheelset_contact, uses_per_point
 
 
 @njit(cache=True)
 def wheelset_contact(
     y_rel: float, dy: float, psi: float, psi_rel: float, dpsi: float, yaw_rate: float,
-    v: float, wr: np.ndarray, q_left: float, q_right: float,
+    v: float, wr: np.ndarray, q_left: float, q_right: float, table: np.ndarray | None = None,
 ) -> tuple[float, float, float, float]:  # fmt: skip
     """Forces of the rails on one wheelset, in total and wheel by wheel.
 
@@ -49,6 +52,9 @@ def wheelset_contact(
         Wheel/rail parameter vector (slots :class:`railhunt.kernel.layout.WR`).
     q_left, q_right : float
         Normal loads of the left and right wheel (N); ``wr[WR.N]`` both on straight track.
+        (With per-point contact mechanics: the vertical loads.)
+    table : numpy.ndarray, optional
+        Creep table of the ``"exact-table"`` law (``SystemArrays.creep_table``).
 
     Returns
     -------
@@ -57,6 +63,11 @@ def wheelset_contact(
         wheelset in track coordinates, and the lateral force on each wheel (N, + left),
         creep plus normal load, whose sum is ``F_y``.
     """
+    if uses_per_point(wr):
+        tab = NO_CREEP_TABLE if table is None else table
+        fy, mz, f_l, f_r, _, _ = point_wheelset_contact(y_rel, dy, psi, psi_rel, yaw_rate, v,
+                                                        wr, q_left, q_right, tab)
+        return fy, mz, f_l, f_r
     a = wr[WR.A]
     r_l, r_r, d_l, d_r = wheel_geometry(y_rel, wr)
     cdl, sdl = math.cos(d_l), math.sin(d_l)

@@ -73,6 +73,10 @@ class Assembly:
         Distance behind the leading wheelset (m).
     carried : numpy.ndarray
         Mass resting on each wheelset, its own included (kg).
+    contact_mechanics : tuple of str
+        Each wheelset's contact mechanics, ``"centred"`` or ``"per-point"``.
+    materials : tuple of (float, float)
+        Each wheelset's shear modulus (Pa) and Poisson's ratio (the per-point ellipses).
     """
 
     layout: StateLayout
@@ -92,6 +96,8 @@ class Assembly:
     wheelset_delay: np.ndarray
     body_delay: np.ndarray
     carried: np.ndarray
+    contact_mechanics: tuple[str, ...] = ()
+    materials: tuple[tuple[float, float], ...] = ()
 
 
 @lru_cache(maxsize=64)
@@ -205,6 +211,8 @@ def assemble_layout(spec: LayoutSpec, values: Mapping[str, float],
 
     wr = np.zeros((len(ws_names), N_WR))
     laws: list[str] = []
+    mechanics: list[str] = []
+    materials: list[tuple[float, float]] = []
     for j, w in enumerate(spec.wheelsets):
         mh = 0.0
         for b in spec.bodies:
@@ -214,6 +222,9 @@ def assemble_layout(spec: LayoutSpec, values: Mapping[str, float],
         law = _wheel_rail_row(spec, w, props[w.name], values, g, carried[j], mh, wr[j],
                               creep_law, where)  # fmt: skip
         laws.append(law)
+        mech, material = _contact_mechanics(spec, w, values, where)
+        mechanics.append(mech)
+        materials.append(material)
     return Assembly(
         layout=layout, mass=mass, K_suspension=K, gravity=gravity, C=C,
         damper_rows=np.array(d_rows).reshape(-1, n),
@@ -224,6 +235,7 @@ def assemble_layout(spec: LayoutSpec, values: Mapping[str, float],
         wheel_rail=wr, creep_laws=tuple(laws),
         wheelsets=layout.wheelset_index(), bodies=layout.body_index(),
         wheelset_delay=wheelset_delay, body_delay=body_delay, carried=carried,
+        contact_mechanics=tuple(mechanics), materials=tuple(materials),
     )  # fmt: skip
 
 
@@ -408,3 +420,26 @@ def _wheel_rail_row(spec: LayoutSpec, w: BodySpec, p: dict[str, float],
     wr[WR.INV_MW], wr[WR.INV_JW] = 1.0 / p["mass"], 1.0 / p["yaw_inertia"]
     wr[WR.W], wr[WR.G], wr[WR.MH] = axle, g, mh
     return law
+
+
+#: Default shear modulus (Pa) and Poisson's ratio: E = 210 GPa, nu = 0.3 (steel).
+_SHEAR_MODULUS = 2.1e11 / 2.6
+_POISSON = 0.3
+
+
+def _contact_mechanics(spec: LayoutSpec, w: BodySpec, values: Mapping[str, float],
+                       where: str) -> tuple[str, tuple[float, float]]:  # fmt: skip
+    """A wheelset's contact mechanics and material (shear modulus, Poisson's ratio)."""
+    data = spec.wheel_rail_of(w)
+    label = f"{where}: wheelset {w.name!r}"
+    mech = str(data.get("contact_mechanics", "centred"))
+    shear = (_value(data["shear_modulus"], values, f"{label}: shear_modulus")  # type: ignore[arg-type]
+             if "shear_modulus" in data else _SHEAR_MODULUS)  # fmt: skip
+    nu = (_value(data["poisson"], values, f"{label}: poisson")  # type: ignore[arg-type]
+          if "poisson" in data else _POISSON)  # fmt: skip
+    if not 1e10 <= shear <= 1e12:
+        raise LayoutError(f"{label}: shear_modulus = {shear!r} Pa is invalid: must be in "
+                          "[1e+10, 1e+12] Pa")  # fmt: skip
+    if not 0.0 <= nu < 0.5:
+        raise LayoutError(f"{label}: poisson = {nu!r} is invalid: must be in [0, 0.5)")
+    return mech, (float(shear), float(nu))

@@ -27,7 +27,7 @@ from railhunt.layout.spec import (
     check_keys,
 )
 
-__all__ = ["BODY_KEYS", "ELEMENT_KEYS", "WHEEL_RAIL_KEYS", "parse_layout"]
+__all__ = ["BODY_KEYS", "CONTACT_MECHANICS", "ELEMENT_KEYS", "WHEEL_RAIL_KEYS", "parse_layout"]
 
 BODY_KEYS = frozenset({"name", "kind", "x", "height", "mass", "yaw_inertia", "roll_inertia",
                        "coordinates", "tag", "wheel_rail"})  # fmt: skip
@@ -35,11 +35,14 @@ ELEMENT_KEYS = frozenset({"name", "kind", "bodies", "axis", "at", "at_b", "mirro
                           "stiffness", "damping", "damping2", "blowoff_force", "gap",
                           "stiffness3"})  # fmt: skip
 #: Keys of ``[wheel_rail]`` (and of a wheelset's ``wheel_rail``): strings, then numbers.
-WHEEL_RAIL_TEXT = ("contact", "creep_law")
+WHEEL_RAIL_TEXT = ("contact", "creep_law", "contact_mechanics")
 WHEEL_RAIL_NUMBERS = ("half_gauge", "radius", "f11", "f22", "f23", "f33", "mu", "load",
                       "axle_load", "lambda1", "lambda2", "lambda3", "lambda4", "lambda5",
                       "d0", "d1", "d4", "d5", "delta_max", "conicity",
-                      "contact_angle")  # fmt: skip
+                      "contact_angle", "shear_modulus", "poisson")  # fmt: skip
+#: Contact mechanics: the vehicle's coefficients at the centred contact (scaled by the
+#: load in curves), or each contact point's own ellipse, coefficients and normal force.
+CONTACT_MECHANICS = ("centred", "per-point")
 WHEEL_RAIL_KEYS = frozenset(WHEEL_RAIL_TEXT + WHEEL_RAIL_NUMBERS)
 #: Contact descriptions and the keys each needs.
 CONTACTS: dict[str, tuple[str, ...]] = {
@@ -95,6 +98,19 @@ def parse_layout(data: dict[str, Any], where: str) -> LayoutSpec:
             raise LayoutError(f"{where}: wheelset {ws.name!r}: contact = {contact!r} is "
                               f"unknown; use one of {', '.join(CONTACTS)}")  # fmt: skip
         missing += [k for k in CONTACTS[contact] if k not in merged]
+        mechanics = merged.get("contact_mechanics", "centred")
+        if mechanics not in CONTACT_MECHANICS:
+            raise LayoutError(f"{where}: wheelset {ws.name!r}: contact_mechanics = "
+                              f"{mechanics!r} is unknown; use one of "
+                              f"{', '.join(CONTACT_MECHANICS)}")  # fmt: skip
+        if mechanics == "per-point" and contact != "profiles":
+            raise LayoutError(f"{where}: wheelset {ws.name!r}: contact_mechanics = "
+                              f"'per-point' needs contact = 'profiles' (the ellipses come "
+                              f"from the profiles' curvatures), not {contact!r}")  # fmt: skip
+        if merged.get("creep_law") == "exact-table" and mechanics != "per-point":
+            raise LayoutError(f"{where}: wheelset {ws.name!r}: creep_law = 'exact-table' "
+                              "needs contact_mechanics = 'per-point' (it reads each "
+                              "contact's own ellipse)")  # fmt: skip
         if missing:
             raise LayoutError(
                 f"{where}: wheelset {ws.name!r} has no wheel/rail data for "

@@ -1,5 +1,6 @@
 """Figures: time histories, phase planes, root loci, bifurcation diagrams, contact geometry,
-parameter sweeps and their Table 1 sections, stability maps, curve entries, spectrograms.
+parameter sweeps and their Table 1 sections, stability maps, curve entries, spectrograms,
+creep-force curves.
 
 Everything is drawn on :class:`matplotlib.figure.Figure` objects rendered by the Agg
 canvas, so no GUI backend (and no global ``pyplot`` state) is ever involved; the functions
@@ -15,6 +16,7 @@ the paper's Table 1 units (kN*s/m, MN/m, MN); curve radii and distances in m, fo
 """
 
 from railhunt.plots.contact import contact_geometry_figure, plot_contact_geometry
+from railhunt.plots.creep import creep_figure, plot_creep_curves
 from railhunt.plots.curves import (
     curve_entry_figure,
     plot_curve_entry,
@@ -51,6 +53,7 @@ __all__ = [
     "bifurcation_family_figure",
     "bifurcation_figure",
     "contact_geometry_figure",
+    "creep_figure",
     "curve_entry_figure",
     "damper_histories_figure",
     "hunting_frequency_figure",
@@ -58,6 +61,7 @@ __all__ = [
     "plot_bifurcation",
     "plot_bifurcation_family",
     "plot_contact_geometry",
+    "plot_creep_curves",
     "plot_curve_entry",
     "plot_damper_histories",
     "plot_damper_velocity",

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from railhunt.cli.commands.bifurcation import bifurcation_command
 from railhunt.cli.commands.contact import contact_command
+from railhunt.cli.commands.creep import creep_command
 from railhunt.cli.commands.critical_speed import critical_speed_command
 from railhunt.cli.commands.curve import curve_command
 from railhunt.cli.commands.eigen import eigen_command
@@ -25,8 +26,8 @@ from railhunt.cli.commands.vehicles import vehicle_command, vehicles_command
 __all__ = ["COMMANDS"]
 
 #: Every command, in the order of ``railhunt --help``: one speed (on straight track, in a
-#: curve), then speed scans, then the contact geometry, measured signals, parameter studies
-#: (of the vehicle, of the curve radius) and the paper's report.
+#: curve), then speed scans, then the contact geometry and creep forces, measured signals,
+#: parameter studies (of the vehicle, of the curve radius) and the paper's report.
 COMMANDS = (
     simulate_command,
     curve_command,
@@ -38,6 +39,7 @@ COMMANDS = (
     bifurcation_command,
     frequency_command,
     contact_command,
+    creep_command,
     spectrogram_command,
     sweep_command,
     stability_map_command,

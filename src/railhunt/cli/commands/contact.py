@@ -75,12 +75,28 @@ RULES = (
               help="Plot r_L, r_R, delta r, contact angles, roll and contact points.")
 @click.option("--csv", "csv_file", type=OutputPath(),
               help="Write the table (mm, rad, mrad).")
+@click.option("--creep", "creep", is_flag=True,
+              help="Also tabulate the contact mechanics at each contact point along y: "
+                   "Hertz semi-axes a, b and a/b, Kalker's C11, C22, C23, C33 and the "
+                   "normal force N = Q / cos(delta) under --load.")
+@click.option("--load", "load", default=10900.0 * 9.8 / 2.0 / 1e3, show_default=True,
+              metavar="KN", callback=number_range("kN", 0.0, 1000.0),
+              help="Vertical wheel load Q for --creep (kN; default the paper's W g / 2).")
+@click.option("--shear-modulus", "shear_modulus", default=2.1e11 / 2.6 / 1e9,
+              show_default=True, metavar="GPA", callback=number_range("GPa", 10.0, 1000.0,
+                                                                      low_open=False),
+              help="Shear modulus of wheel and rail for --creep (GPa; default E = 210 GPa "
+                   "with nu = 0.3).")
+@click.option("--poisson", "poisson", default=0.3, show_default=True,
+              callback=number_range("", 0.0, 0.499, low_open=False),
+              help="Poisson's ratio for --creep.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (SI units).")
 @overwrite_option
 def contact_command(
     wheel: str, rail: str, inclination: float, gauge: float, back_to_back: float,
     r0: float, y_max: float, y_step: float, amplitude: float, png_file: Path | None,
-    csv_file: Path | None, as_json: bool, overwrite: bool,
+    csv_file: Path | None, creep: bool, load: float, shear_modulus: float, poisson: float,
+    as_json: bool, overwrite: bool,
 ) -> None:
     """Contact geometry of a wheelset on its rails, and its equivalent conicity.
 
@@ -91,9 +107,16 @@ def contact_command(
     Inputs and outputs in mm; --json in SI units.
 
     \b
+    With --creep, the contact mechanics at each contact point as the per-point model
+    computes them: the Hertz ellipse from the profiles' curvatures there (a along the
+    rolling direction), Kalker's coefficients for its a/b and the normal force that
+    carries the vertical load --load at that contact angle.
+
+    \b
     Examples:
       railhunt contact --png s1002_uic60.png
       railhunt contact --wheel worn.prw --inclination 1:20 --amplitude 2
+      railhunt contact --creep --load 60 --csv ellipses.csv
     """
     from railhunt import (
         contact_geometry,
@@ -127,6 +150,12 @@ def contact_command(
         raise CliError(f"--amplitude {amplitude:g} mm: {exc}") from None
     flange = geo.flange_contact_y()
     jumps = [float(v) for v in geo.y[geo.jump]]
+    points = None
+    if creep:
+        from railhunt.contact.point_contact import point_contact
+
+        with user_input("--creep: "):
+            points = point_contact(geo, shear_modulus * 1e9, poisson)
     if csv_file is not None:
         import numpy as np
 
@@ -136,9 +165,14 @@ def contact_command(
                 geo.delta_left, geo.delta_right, geo.roll * 1e3,
                 geo.wheel_left * 1e3, geo.wheel_right * 1e3, geo.jump.astype(int),
             ])
+            header = ("y_mm,r_left_mm,r_right_mm,delta_r_mm,delta_left_rad,"
+                      "delta_right_rad,roll_mrad,wheel_left_mm,wheel_right_mm,jump")
+            if points is not None:
+                cols, names = _creep_columns(points, load * 1e3)
+                table = np.column_stack([table, *cols])
+                header += "," + ",".join(names)
             np.savetxt(csv_file, table, delimiter=",", fmt="%.9g", comments="",
-                       header="y_mm,r_left_mm,r_right_mm,delta_r_mm,delta_left_rad,"
-                              "delta_right_rad,roll_mrad,wheel_left_mm,wheel_right_mm,jump")
+                       header=header)
             write_sidecar(csv_file, traced({"wheel": w.name, "rail": r.name}),
                           **command_record())  # fmt: skip
     if png_file is not None:
@@ -156,6 +190,8 @@ def contact_command(
             "r_right_m": geo.r_right.tolist(), "delta_left_rad": geo.delta_left.tolist(),
             "delta_right_rad": geo.delta_right.tolist(), "roll_rad": geo.roll.tolist(),
         }
+        if points is not None:
+            data["creep"] = _creep_json(points, load * 1e3)
         click.echo(json.dumps(json_safe(traced(data))))
         return
     i0 = int(abs(geo.y).argmin())
@@ -171,3 +207,56 @@ def contact_command(
     if jumps:
         click.echo("contact-point jumps at y = " + ", ".join(f"{v * 1e3:+.1f}" for v in jumps)
                    + " mm")
+    if points is not None:
+        _echo_creep(points, load * 1e3, y_step)
+
+
+def _creep_columns(points: object, load: float) -> tuple[list, list[str]]:
+    """The --creep columns of the CSV (mm, kN) and their names."""
+    a, b = points.ellipse(load)
+    n = points.normal_force(load)
+    cols, names = [], []
+    for k, side in enumerate(("left", "right")):
+        cols += [a[k] * 1e3, b[k] * 1e3, points.a_over_b[k], points.c11[k], points.c22[k],
+                 points.c23[k], points.c33[k], n[k] * 1e-3]
+        names += [f"{q}_{side}" for q in ("a_mm", "b_mm", "a_over_b", "c11", "c22", "c23",
+                                           "c33", "normal_force_kN")]
+    return cols, names
+
+
+def _creep_json(points: object, load: float) -> dict:
+    """The --creep block of --json (SI)."""
+    a, b = points.ellipse(load)
+    n = points.normal_force(load)
+    out: dict = {"load_n": load, "shear_modulus_pa": points.shear_modulus,
+                 "poisson": points.poisson}
+    for k, side in enumerate(("left", "right")):
+        out[side] = {"a_m": a[k].tolist(), "b_m": b[k].tolist(),
+                     "a_over_b": points.a_over_b[k].tolist(), "c11": points.c11[k].tolist(),
+                     "c22": points.c22[k].tolist(), "c23": points.c23[k].tolist(),
+                     "c33": points.c33[k].tolist(), "normal_force_n": n[k].tolist()}
+    return out
+
+
+def _echo_creep(points: object, load: float, y_step: float) -> None:
+    """The --creep table of the left wheel (the right one is its mirror), every 1 mm."""
+    from rich.table import Table
+
+    from railhunt.cli.output import stdout_console
+
+    a, b = points.ellipse(load)
+    n = points.normal_force(load)
+    every = max(1, int(round(1.0 / y_step)))
+    table = Table(title=f"left wheel's contact at Q = {load * 1e-3:.4g} kN (the right "
+                        "wheel's at -y)")  # fmt: skip
+    for head in ("y mm", "δ deg", "a mm", "b mm", "a/b", "C11", "C22", "C23", "C33",
+                 "N kN"):
+        table.add_column(head, justify="right")
+    centre = points.y.size // 2
+    for i in sorted(set(range(centre % every, points.y.size, every))):
+        table.add_row(f"{points.y[i] * 1e3:+.1f}", f"{math.degrees(points.delta[0, i]):.2f}",
+                      f"{a[0, i] * 1e3:.2f}", f"{b[0, i] * 1e3:.2f}",
+                      f"{points.a_over_b[0, i]:.3g}", f"{points.c11[0, i]:.3g}",
+                      f"{points.c22[0, i]:.3g}", f"{points.c23[0, i]:.3g}",
+                      f"{points.c33[0, i]:.3g}", f"{n[0, i] * 1e-3:.4g}")  # fmt: skip
+    stdout_console().print(table)
