@@ -15,8 +15,8 @@ Laws (``LAWS``):
     Kalker's exact theory of steady rolling on the half-space
     (:mod:`railhunt.mechanics.exact`): a 40 x 40 grid and its half, extrapolated.
 ``"fastsim-modified"``
-    FASTSIM with three blended flexibilities and the elliptical traction bound
-    (Vollebregt and Wilders 2011; Vollebregt and Voltr 2023; :mod:`railhunt.mechanics.fastsim`).
+    FASTSIM with three blended flexibilities (Vollebregt and Wilders 2011; Vollebregt and
+    Voltr 2023; :mod:`railhunt.mechanics.fastsim`), parabolic traction bound.
 ``"fastsim"``
     Kalker's FASTSIM (1982): one creepage-weighted flexibility, parabolic traction bound.
 ``"polach"``
@@ -181,8 +181,7 @@ def creep_forces(xi, eta, phi, *, a, b, mu, normal_force, law: str = "fastsim-mo
         Elements along and across the rolling direction for ``"fastsim"``,
         ``"fastsim-modified"`` and ``"exact"`` (defaults 50 x 50, 50 x 50, 40 x 40).
     traction_bound : {"parabolic", "elliptic"}, optional
-        The FASTSIM laws' traction bound (defaults: ``"parabolic"`` for ``"fastsim"``,
-        ``"elliptic"`` for ``"fastsim-modified"``).
+        The FASTSIM laws' traction bound (default ``"parabolic"``, Kalker's).
 
     Returns
     -------
@@ -259,7 +258,7 @@ def _forces(law, xi, eta, phi, a, b, mu_n, g, nu, grid, bound_name):
             bound = _BOUNDS[bound_name or "parabolic"]
         else:
             flex = modified_flexibilities(xi, eta, phi, a, b, mu_n, g, c11, c22, c23)
-            bound = _BOUNDS[bound_name or "elliptic"]
+            bound = _BOUNDS[bound_name or "parabolic"]
         return fastsim_batch(xi, eta, phi, a, b, *(np.ascontiguousarray(f) for f in flex),
                              mu_n, bound, mx, my)
     fx_lin = -f11 * xi
