@@ -55,7 +55,18 @@ def test_fingerprint_through_the_layout_file():
 
     expected = dict(line.split(": ", 1) for line in
                     (ROOT / "benchmarks" / "fingerprint_paper2019.txt").read_text().splitlines())
-    assert fingerprint() == expected
+    got = fingerprint()
+    # The arrays, rhs and Jacobian are railhunt's own arithmetic: the same bits. The linear
+    # critical speed goes through LAPACK's eigenvalues, whose last bits differ between
+    # numpy/scipy builds (4.5e-13 km/h between the recorded value and numpy 2.4 / scipy
+    # 1.17): it is compared to 1e-12 relative, far below anything a model change moves.
+    speed = "linear_critical_speed"
+    assert {k: v for k, v in got.items() if k != speed} == {
+        k: v for k, v in expected.items() if k != speed}
+    numbers = [re.findall(r"[-+0-9.e]+(?= km/h|\) Hz)", d[speed]) for d in (got, expected)]
+    assert len(numbers[0]) == len(numbers[1]) == 2
+    for a, b in zip(*numbers, strict=True):
+        assert float(a) == pytest.approx(float(b), rel=1e-12)
 
 
 def test_paper_layout_is_the_17_dof_vehicle():

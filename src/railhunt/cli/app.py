@@ -12,6 +12,7 @@ from typing import Any
 
 import click
 
+import railhunt
 from railhunt.cli.commands import COMMANDS
 from railhunt.cli.errors import DEBUG_ENV, DEBUG_KEY, PROG, no_tracebacks, one_line_usage_errors
 
@@ -104,7 +105,7 @@ class Group(click.Group):
     epilog=_NOTES,
     context_settings={"help_option_names": ["-h", "--help"]},
 )
-@click.version_option(package_name="railhunt", prog_name=PROG)
+@click.version_option(railhunt.__version__, prog_name=PROG)
 @click.option("--debug", is_flag=True, expose_value=False, is_eager=True,
               callback=lambda ctx, param, value: ctx.meta.__setitem__(DEBUG_KEY, value),
               help=f"Show the traceback of an unexpected error (or set {DEBUG_ENV}=1).")

@@ -25,8 +25,23 @@ def new_figure(width: float, height: float) -> Figure:
     return fig
 
 
+#: The metadata key that names the program that made a figure, per file format.
+_CREATOR_KEY = {"png": "Software", "pdf": "Creator", "svg": "Creator"}
+
+
 def save_figure(fig: Figure, path: str | os.PathLike[str]) -> Path:
-    """Save ``fig`` to ``path`` (format from the suffix) at :data:`DPI`; returns the path."""
+    """Save ``fig`` to ``path`` (format from the suffix) at :data:`DPI`; returns the path.
+
+    A PNG, PDF or SVG file names railhunt and its version in its metadata (PNG
+    ``Software``, PDF and SVG ``Creator``), as every JSON and CSV output carries
+    ``railhunt_version``.
+    """
+    import matplotlib
+
+    from railhunt._version import __version__
+
     path = Path(path)
-    fig.savefig(path, dpi=DPI)
+    key = _CREATOR_KEY.get(path.suffix.lower().lstrip("."))
+    creator = f"railhunt {__version__} (matplotlib {matplotlib.__version__})"
+    fig.savefig(path, dpi=DPI, metadata={key: creator} if key else None)
     return path
