@@ -62,6 +62,8 @@ WRITERS = [
     (["frequency", "--damper-png", "FILE"], "railhunt:hunting_frequency"),
     (["contact", "--png", "FILE"], "railhunt:contact_geometry"),
     (["contact", "--csv", "FILE"], "railhunt:contact_geometry"),
+    (["creep", "--png", "FILE"], "railhunt.mechanics.curves:creep_curves"),
+    (["creep", "--csv", "FILE"], "railhunt.mechanics.curves:creep_curves"),
     (["spectrogram", "RUN", "--channel", "y_w1", "--png", "FILE"],
      "railhunt.analysis.spectrogram:read_channel"),
     (["sweep", "C_d1", "--from", "1e5", "--to", "2e5", "--out", "FILE"], "railhunt:sweep"),
@@ -153,7 +155,7 @@ def test_reproduce_keeps_an_earlier_report_without_overwrite(tmp_path, monkeypat
 def test_the_overwrite_policy_is_in_the_help():
     text = " ".join(run("--help").stdout.split())
     assert "not replaced" in text and "--overwrite" in text
-    for command in ("simulate", "eigen", "bifurcation", "contact", "spectrogram", "plot",
+    for command in ("simulate", "eigen", "bifurcation", "contact", "creep", "spectrogram", "plot",
                     "sections", "reproduce", "curve", "frequency", "sweep", "stability-map"):
         assert "--overwrite" in run(command, "--help").stdout, command
 

@@ -17,16 +17,18 @@ The solver is a nonlinear block Gauss-Seidel method in the differences of the tr
 along the rolling direction (the idea of Vollebregt's SteadyGS, CONTACT's steady-rolling
 solver): in those variables the system matrix is ``A`` itself (symmetric, positive
 definite) instead of the badly conditioned transport operator, so the iteration converges.
-Visiting element ``I`` (rows from the trailing edge to the leading edge), its traction
-changes by ``delta`` together with those of the adhesion elements downstream of it up to
-the next element that slips or lies outside (``J``), so that the slip everywhere changes
-by ``(A(K - I) - A(K - J)) delta`` (a telescoping sum) and the element's own 2 x 2
+Visiting element ``I`` (from the trailing edge to the leading edge of its line), its
+traction changes by ``delta`` together with those of the adhesion elements downstream of
+it up to the next element that slips or lies outside (``J``), so that the slip changes by
+``(A(K - I) - A(K - J)) delta`` (a telescoping sum), and the element's own 2 x 2
 complementarity problem is solved exactly: adhesion if the sticking traction lies within
-the bound, else the slip direction from a scalar Newton iteration on the slip's
-magnitude. The slip of every element is kept up to date, so a sweep costs about one dense
-product with ``A``. Relaxation factors ``omega_h`` (adhesion) and ``omega_s`` (slip) damp
-the updates. The loop stops when no traction changed by more than ``tol`` times the
-largest traction bound (or, without a finite bound, the largest traction) in a sweep.
+the bound, else the slip direction from a scalar Newton iteration on the slip's magnitude.
+Each line of elements along ``x`` is swept ``INNER`` times with the slip updated along the
+line only; then the line's change of tractions goes to the slip of every element, one
+vectorised pass per element with the transport table ``B(k) = A(k) - A(k + (1, 0))``, so
+that a sweep of the patch costs about one dense product. Relaxation factors ``omega_h``
+(adhesion) and ``omega_s`` (slip) damp the updates and are reduced when the iteration is
+slow. The loop stops when the resultants (forces and moment) have settled.
 """
 
 from __future__ import annotations
@@ -39,6 +41,8 @@ from numba import njit
 EXTERIOR, ADHESION, SLIP = 0, 1, 2
 #: Sweeps along one line before its change goes to the rest of the patch.
 INNER = 6
+#: Sweeps after which, without convergence, the relaxation factors are reduced (again).
+DAMP_AFTER = 30
 
 
 @njit(cache=True)
@@ -177,16 +181,16 @@ def steady_rolling(inside, gbound, w, dx, a, p, tol, maxit, omega_h, omega_s, x,
     p : ndarray, shape (2, mx, my)
         Initial tractions (set to zero outside the contact); overwritten by the solution.
     tol : float
-        Stop when, in two sweeps in a row, neither resultant (the sums of ``p_x``, ``p_y``
+        Stop when, in two sweeps in a row, no resultant (the sums of ``p_x``, ``p_y``
         and of ``(x p_y - y p_x) / l``, ``l = sqrt(max|x| max|y|)`` over the contact)
-        changed by more than ``tol`` times its scale: the traction bound's sum, or
-        without a finite bound the resultants' own size. (The iteration converges
+        changed by more than ``tol`` times the largest of them. (The iteration converges
         geometrically, about a factor 2 per sweep, so the remaining error is about the
         last change: the forces are converged long before every traction is.)
     maxit : int
         Largest number of sweeps.
     omega_h, omega_s : float
-        Relaxation factors for elements in adhesion and in slip (1 = none).
+        Relaxation factors for elements in adhesion and in slip (1 = none); reduced
+        every ``DAMP_AFTER`` sweeps without convergence (to at least 0.5 and 0.3).
     x, y : ndarray, shape (mx, my)
         Element centres, for the moment.
 
@@ -201,17 +205,10 @@ def steady_rolling(inside, gbound, w, dx, a, p, tol, maxit, omega_h, omega_s, x,
     """
     mx, my = inside.shape
     lo, hi = _row_ranges(inside)
-    gsum = 0.0
-    finite = True
     state = np.zeros((mx, my), np.int8)
     for i in range(mx):
         for j in range(my):
             if inside[i, j]:
-                g = gbound[i, j]
-                if math.isfinite(g):
-                    gsum += g
-                else:
-                    finite = False
                 state[i, j] = ADHESION
             else:
                 p[0, i, j] = 0.0
@@ -235,11 +232,6 @@ def steady_rolling(inside, gbound, w, dx, a, p, tol, maxit, omega_h, omega_s, x,
     a0x, a0y = a[0, mx, my - 1], a[2, mx, my - 1]
     fx0, fy0, mz0 = _resultants(inside, x, y, p)
     quiet = 0
-    gmax = 0.0
-    for i in range(mx):
-        for j in range(my):
-            if inside[i, j] and math.isfinite(gbound[i, j]):
-                gmax = max(gmax, gbound[i, j])
     pmax = 0.0
     col_lo = np.full(my, mx, np.int64)
     col_hi = np.full(my, -1, np.int64)
@@ -252,7 +244,7 @@ def steady_rolling(inside, gbound, w, dx, a, p, tol, maxit, omega_h, omega_s, x,
     for sweep in range(1, maxit + 1):
         # a change below this is not made (p and S stay consistent): it moves no resultant
         # by more than about a tenth of the tolerance
-        skip = 0.1 * tol * (gmax if finite else pmax)
+        skip = 0.1 * tol * pmax if sweep > 1 else 0.0
         pmax = 0.0
         for j in range(my):
             i0, i1 = col_lo[j], col_hi[j]
@@ -315,11 +307,16 @@ def steady_rolling(inside, gbound, w, dx, a, p, tol, maxit, omega_h, omega_s, x,
                 pmax = max(pmax, abs(p[0, i, j]), abs(p[1, i, j]))
         fx, fy, mz = _resultants(inside, x, y, p)
         change = max(abs(fx - fx0), abs(fy - fy0), abs(mz - mz0) / arm)
-        scale = gsum if finite else max(abs(fx), abs(fy), abs(mz) / arm)
+        scale = max(abs(fx), abs(fy), abs(mz) / arm)
         fx0, fy0, mz0 = fx, fy, mz
         quiet = quiet + 1 if change <= tol * scale else 0
         if quiet >= 2:
             return sweep, s, state
+        if sweep % DAMP_AFTER == 0:
+            # slow: slip areas that flip back and forth (large spin near saturation)
+            # settle under damping
+            omega_s = max(0.3, 0.7 * omega_s)
+            omega_h = max(0.5, 0.85 * omega_h)
     return -maxit, s, state
 
 

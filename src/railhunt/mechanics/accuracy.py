@@ -11,7 +11,8 @@ prints, per law, the largest difference from the exact theory over each sweep, o
 ``F_x``, ``F_y`` over ``mu N`` and of ``M_z`` over ``mu N c``. The exact theory is the
 ``"exact"`` law (40 x 40 extrapolated from 20 x 20), itself checked against a finer grid
 (``--reference-grid``, extrapolated from half of it): that difference is the reference's
-own uncertainty, printed beside.
+own uncertainty, printed beside. A second table gives each law's linear coefficients
+(at a thousandth of the saturating creepages) relative to Kalker's.
 """
 
 from __future__ import annotations
@@ -64,6 +65,27 @@ def table(grid: int, reference_grid: int, laws=LAWS, log=print) -> dict:
     return out
 
 
+def coefficient_table(laws=LAWS) -> dict:
+    """``{(patch, law): (C11, C22, C23 from F_y, C23 from M_z, C33)}`` of each law at a
+    creepage of 1e-3 of the saturating one, over Kalker's (the table's) values, minus 1."""
+    out = {}
+    for name, (ratio, b) in PATCHES.items():
+        a = ratio * b
+        c = math.sqrt(a * b)
+        kw = dict(a=a, b=b, mu=MU, normal_force=N, shear_modulus=G, poisson=NU)
+        c11, c22, c23, c33 = kalker_coefficients(ratio, NU)
+        xs, es, ps = (1e-3 * MU * N / (G * c * c * c11), 1e-3 * MU * N / (G * c * c * c22),
+                      1e-3 * MU * N / (G * c**3 * c23))
+        for law in laws:
+            r = creep_forces([xs, 0.0, 0.0], [0.0, es, 0.0], [0.0, 0.0, ps], law=law, **kw)
+            got = (-r.fx[0] / (G * c * c * xs), -r.fy[1] / (G * c * c * es),
+                   -r.fy[2] / (G * c**3 * ps), r.mz[1] / (G * c**3 * es),
+                   -r.mz[2] / (G * c**4 * ps))
+            out[name, law] = tuple(g / k - 1 for g, k in zip(got, (c11, c22, c23, c23, c33),
+                                                             strict=True))  # fmt: skip
+    return out
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--grid", type=int, default=40, help="the exact law's grid")
@@ -83,6 +105,15 @@ def main(argv: list[str] | None = None) -> int:
             print(f"| {name} | {sweep} | " + " | ".join(cells) + " |")
     print("\n(each cell: largest |F - F_exact| / (mu N) in %, over F_x and F_y / largest "
           "|M_z - M_z,exact| / (mu N c) in %)")
+    coef = coefficient_table()
+    print("\n| patch | law | C11 | C22 | C23 (F_y) | C23 (M_z) | C33 |")
+    print("|---|---|---|---|---|---|---|")
+    for name in PATCHES:
+        for law in LAWS:
+            cells = " | ".join(f"{100 * v:+.1f}" for v in coef[name, law])
+            print(f"| {name} | {law} | {cells} |")
+    print("\n(each law's linear coefficients at 1e-3 of the saturating creepages, relative "
+          "to Kalker's table, in %)")
     return 0
 
 

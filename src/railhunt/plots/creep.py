@@ -49,8 +49,10 @@ def creep_figure(curves: CreepCurves) -> Figure:
         ax.set_title(title, loc="left", fontsize="medium")
         ax.grid(True, alpha=0.3)
         ax.axhline(0.0, color="0.6", lw=0.6)
-    bounded = [law for law in cv.laws if law != "linear"]
-    if bounded and len(bounded) < len(cv.laws):  # the linear law runs off the panel
+    # the laws bounded by mu N set the force axis; the linear law, and Vermeulen-Johnson's
+    # spin force, may run off it
+    bounded = [law for law in cv.laws if law not in ("linear", "vermeulen-johnson")]
+    if bounded and len(bounded) < len(cv.laws):
         peak = max(float(abs((cv.fx if force == "fx" else cv.fy)[law]).max()) / mu_n
                    for law in bounded)
         ax_f.set_ylim(-1.15 * max(peak, 1.0), 1.15 * max(peak, 1.0))

@@ -113,9 +113,9 @@ def creep_command(
     between a wheel (--wheel-radius, --wheel-profile-radius) and a rail
     (--rail-profile-radius) of steel (G = --shear-modulus, nu = --poisson). One creepage
     (--sweep) runs from 0 to --max with the other two fixed; the laws are Kalker's exact
-    theory of steady rolling, modified FASTSIM (three blended flexibilities, elliptical
-    bound), Kalker's FASTSIM, Polach with his spin term, the paper's heuristic law,
-    Vermeulen-Johnson and Kalker's linear law. Prints the force of the swept direction
+    theory of steady rolling, modified FASTSIM (three blended flexibilities), Kalker's
+    FASTSIM, Polach with his spin term, the paper's heuristic law, Vermeulen-Johnson and
+    Kalker's linear law. Prints the force of the swept direction
     over mu N and the spin moment over mu N c (c = sqrt(ab)) per law; --json and --csv
     in SI units (creepages as numbers, phi in 1/m).
 
