@@ -173,6 +173,15 @@ WHEEL_RAIL: dict[str, Meaning] = {
     "d1": Meaning("the contact-angle polynomial's linear term", "rad/m", FINITE),
     "d4": Meaning("the contact-angle polynomial's quartic term", "rad/m^4", FINITE),
     "d5": Meaning("the contact-angle polynomial's quintic term", "rad/m^5", FINITE),
+    "shear_modulus": Meaning("the shear modulus of wheel and rail steel", "Pa",
+                             Rule(lower=0.0, lower_strict=True,
+                                  reason="a shear modulus is positive"),
+                             _range(1e10, 1e12, "a shear modulus of 10 to 1000 GPa (8.2e10 Pa "
+                                    "for wheel and rail steel; a value in GPa is a common "
+                                    "mistake)")),  # fmt: skip
+    "poisson": Meaning("Poisson's ratio of wheel and rail steel", "1",
+                       Rule(lower=0.0, upper=0.5, upper_strict=True,
+                            reason="Poisson's ratio of an elastic solid is in [0, 0.5)")),
 }
 
 #: The acceleration of gravity (``[vehicle] gravity``).
