@@ -17,6 +17,7 @@ example once. The build folder is ``$RAILHUNT_EXECUTED_EXAMPLES`` when set, else
 
     python docs/_hooks/notebooks.py            # execute the stale examples, print times
     python docs/_hooks/notebooks.py --force    # execute all of them
+    python docs/_hooks/notebooks.py --jobs 1   # one at a time (default: the cores, at most 4)
 """
 
 from __future__ import annotations
@@ -27,6 +28,7 @@ import importlib.metadata
 import os
 import sys
 import time
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import jupytext
@@ -147,28 +149,59 @@ def outputs(nb: NotebookNode) -> list[dict]:
     return [o for c in nb.cells if c.cell_type == "code" for o in c.get("outputs", [])]
 
 
+def _previous_seconds(path: Path, out_dir: Path) -> float:
+    """The seconds an earlier execution of ``path`` took (0 when none is recorded)."""
+    target = out_dir / f"{path.stem}.ipynb"
+    try:
+        return float(nbformat.read(target, as_version=4).metadata["railhunt"]["seconds"])
+    except (OSError, KeyError, ValueError, TypeError):
+        return 0.0
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Execute the examples (the stale ones, or all with ``--force``); print their times."""
+    """Execute the examples (the stale ones, or all with ``--force``); print their times.
+
+    Stale examples run ``--jobs`` at a time (each in its own kernel process; default: the
+    machine's cores, at most 4), the longest by their last recorded time first.
+    """
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--force", action="store_true", help="execute even fresh notebooks")
     parser.add_argument("--out", type=Path, default=None, help="folder of executed notebooks")
+    parser.add_argument("--jobs", type=int, default=min(4, os.cpu_count() or 1),
+                        help="examples executed at the same time (default: cores, at most 4)")
     args = parser.parse_args(argv)
+    if args.jobs < 1:
+        parser.error(f"--jobs must be at least 1, got {args.jobs}")
     out_dir = build_dir() if args.out is None else args.out
     failed = []
     total = time.perf_counter()
+    stale = []
     for path in example_paths():
-        start = time.perf_counter()
         nb = None if args.force else fresh(path, out_dir)
-        how = "executed" if nb is None else "reused"
+        if nb is None:
+            stale.append(path)
+        else:
+            print(f"{path.name}: reused, {len(outputs(nb))} outputs", flush=True)
+    stale.sort(key=lambda path: -_previous_seconds(path, out_dir))
+
+    def run(path: Path) -> tuple[Path, NotebookNode | None, str, float]:
+        start = time.perf_counter()
         try:
-            nb = execute(path, out_dir) if nb is None else nb
+            nb = execute(path, out_dir)
         except nbclient.exceptions.CellExecutionError as error:
-            print(f"{path.name}: FAILED\n{error}", file=sys.stderr)
-            failed.append(path.name)
-            continue
-        seconds = time.perf_counter() - start
-        print(f"{path.name}: {seconds:.1f} s ({how}), {len(outputs(nb))} outputs", flush=True)
-    print(f"examples: {time.perf_counter() - total:.1f} s in all -> {out_dir}")
+            return path, None, str(error), time.perf_counter() - start
+        return path, nb, "", time.perf_counter() - start
+
+    with ThreadPoolExecutor(max_workers=args.jobs) as pool:
+        for path, nb, error, seconds in pool.map(run, stale):
+            if nb is None:
+                print(f"{path.name}: FAILED\n{error}", file=sys.stderr)
+                failed.append(path.name)
+                continue
+            print(f"{path.name}: {seconds:.1f} s (executed), {len(outputs(nb))} outputs",
+                  flush=True)
+    print(f"examples: {time.perf_counter() - total:.1f} s in all ({args.jobs} at a time) "
+          f"-> {out_dir}")
     if failed:
         print(f"failed: {', '.join(failed)}", file=sys.stderr)
     return 1 if failed else 0
