@@ -47,6 +47,9 @@ SHIPPED = {
     "S1002": "MBench_S1002_v3.prw",
     "UIC60": "MBench_UIC60_v3.prr",
     "S1002_worn": "worn_s1002.prw",
+    "worn_hollow_1mm": "worn_hollow_1mm.whl",
+    "worn_hollow_2mm": "worn_hollow_2mm.whl",
+    "worn_hollow_3mm": "worn_hollow_3mm.whl",
 }
 
 

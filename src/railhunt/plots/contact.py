@@ -135,7 +135,6 @@ def conicity_histogram_figure(names: list[str], conicities: list[float],
                 ax.annotate(name, (value, 0), xytext=(0, 4), textcoords="offset points",
                             rotation=90, fontsize=7, ha="center", va="bottom")  # fmt: skip
     ax.set_title(f"{len(names)} wheelset{'s' if len(names) != 1 else ''}", fontsize=9)
-    fig.tight_layout()
     return fig
 
 

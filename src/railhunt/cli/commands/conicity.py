@@ -50,10 +50,20 @@ def _vehicle(value: str) -> object:
 
 
 def _bands_mm(bands: list) -> str:
+    """The bands in mm; a band and its mirror (a symmetric wheelset's) as one ``±``."""
     if not bands:
         return "-"
-    return ", ".join(f"{a * 1e3:+.1f}…{b * 1e3:+.1f}" if b > a else f"{a * 1e3:+.1f}"
-                     for a, b in bands)  # fmt: skip
+    keys = {(round(a, 6), round(b, 6)) for a, b in bands}
+    out = []
+    for a, b in bands:
+        mirrored = (round(-b, 6), round(-a, 6)) in keys
+        if mirrored and b < 0:
+            continue
+        if mirrored and a > 0:
+            out.append(f"±{a * 1e3:.1f}…{b * 1e3:.1f}" if b > a else f"±{a * 1e3:.1f}")
+        else:
+            out.append(f"{a * 1e3:+.1f}…{b * 1e3:+.1f}" if b > a else f"{a * 1e3:+.1f}")
+    return ", ".join(out)
 
 
 @command("conicity",
