@@ -49,7 +49,6 @@ SHIPPED = {
     "S1002_worn": "worn_s1002.prw",
     "worn_hollow_1mm": "worn_hollow_1mm.whl",
     "worn_hollow_2mm": "worn_hollow_2mm.whl",
-    "worn_hollow_3mm": "worn_hollow_3mm.whl",
 }
 
 

@@ -104,7 +104,6 @@ def worn_s1002(path: str | None = None) -> Profile:
 MEASURED_LIKE = {
     "worn_hollow_1mm.whl": (1.0e-3, 5e-3, 60e-3, 101),
     "worn_hollow_2mm.whl": (2.0e-3, 5e-3, 60e-3, 102),
-    "worn_hollow_3mm.whl": (3.0e-3, 3e-3, 50e-3, 103),
 }
 #: RMS (m) of the measurement noise of :func:`measured_like`, normal to the profile.
 MEASURED_NOISE = 5e-6

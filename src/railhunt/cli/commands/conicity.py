@@ -172,7 +172,7 @@ def conicity_command(
 
     table = Table(title=f"{len(rows)} wheelset{'s' if len(rows) != 1 else ''} on {rail}, "
                         f"inclination {inclination:.4g}, gauge {gauge:g} mm")  # fmt: skip
-    table.add_column("wheel")
+    table.add_column("wheel", no_wrap=True)
     table.add_column(f"conicity {amplitude:g} mm", justify="right")
     table.add_column("two-point bands y mm")
     if critical:
