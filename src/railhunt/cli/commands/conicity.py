@@ -126,9 +126,9 @@ def conicity_command(
 
     \b
     Examples:
-      railhunt conicity S1002 worn_*.whl
-      railhunt conicity fleet/*.whl --rail measured.ban --inclination none --png fleet.png
-      railhunt conicity worn_2.whl --critical-speed --json
+      railhunt conicity S1002 examples/data/worn_hollow_1mm.whl examples/data/worn_hollow_2mm.whl
+      railhunt conicity WHEEL_FILES... --rail FILE --inclination none --png FILE
+      railhunt conicity examples/data/worn_hollow_2mm.whl --critical-speed --json
     """
     from railhunt.studies.fleet import wheel_fleet
 
