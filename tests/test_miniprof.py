@@ -180,7 +180,8 @@ def test_repair_drops_the_points_that_fold_back(tmp_path):
     assert back.meta["miniprof.dropped_fold_lines"] == [304]
 
 
-@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@settings(max_examples=60, deadline=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(st.lists(st.text(alphabet=st.characters(blacklist_categories=("Cs",)), max_size=40),
                 max_size=30))  # fmt: skip
 def test_random_garbage_is_refused_in_one_line_naming_the_file(tmp_path, rows):

@@ -171,20 +171,16 @@ def read_profile(
         ``#MINIWHEELPROF`` mark, or the extension (``.prw``/``.whe``/``.whl`` wheel,
         ``.prr``/``.rai``/``.ban`` rail).
     mirror_y : bool
-        Mirror ``y`` after reading (for files whose field side is at negative ``y``); for
-        a MiniProf file, negate its ``X`` before it is put into railhunt's axes (a rail
-        whose gauge face is at the higher ``X``).
+        Mirror ``y`` (field side at negative ``y``); a MiniProf file's ``X`` is negated
+        before it is put into railhunt's axes.
     repair : bool
         Sort the points of a profile whose ``y`` is not monotonic (with a warning naming
         the file and the first offending point) instead of refusing it; in a MiniProf
         file, drop the points that fold back.
     smooth : float or "auto", optional
-        Smooth the points with a cubic smoothing spline
-        (:func:`railhunt.contact.smoothing.smooth_points`): a float is its tolerance, the
-        RMS normal distance (m) between the points and the smoothed profile (0: no
-        smoothing); ``"auto"`` takes the noise estimated from the points. Default: ``"auto"``
-        for MiniProf files (measurements), none for SIMPACK and text files (their numbers
-        stay as they were).
+        Smoothing-spline tolerance (m, RMS normal distance; 0 none; ``"auto"`` the noise
+        estimated, :mod:`railhunt.contact.smoothing`). Default ``"auto"`` for MiniProf
+        files, none for SIMPACK and text files.
     flange_back : float
         A MiniProf wheel's tape circle from its flange back (m), 70 mm for EN 13715
         profiles (``y = X - flange_back``).
@@ -192,22 +188,15 @@ def read_profile(
     Returns
     -------
     Profile
-        In metres, in the convention of the module docstring. ``meta["smoothing"]`` holds
-        the tolerance used (m) and ``meta["noise"]`` the noise estimated (m), when smoothed.
+        In metres, in the convention of the module docstring (smoothed: ``meta``'s
+        ``smoothing`` and ``noise``, m).
 
     Raises
     ------
     ProfileError
-        An unreadable file, or (without ``repair``) points whose ``y`` goes back and
-        forth: the file and the first point out of order are named. A profile listed
-        from the field side to the flange (``y`` falling throughout) is monotonic. And
-        a file that cannot be the profile it is given as
-        (:mod:`railhunt.contact.profile_checks`): decimal commas, a SIMPACK header of
-        the other kind, fewer than 20 points, values in metres (or not in mm), a rail
-        head given as the wheel or a wheel as the rail. A single point far off its
-        neighbours is kept with a warning. A UTF-8 byte-order mark is skipped. A MiniProf
-        file is refused, naming its line, for a point line that is not numbers, a value
-        that is not finite, a header line among the points, a point that folds back.
+        An unreadable file, points whose ``y`` goes back and forth (without ``repair``;
+        the first named), a file that cannot be the profile it is given as
+        (:mod:`.profile_checks`); a MiniProf file names its line (:mod:`.miniprof`).
     """
     from railhunt.contact import miniprof, profile_checks
 
@@ -273,48 +262,17 @@ def _check_kind(kind: str) -> None:
 
 
 def smoothed(profile: Profile, tolerance: float | str = "auto", where: str = "") -> Profile:
-    """The profile smoothed by a cubic smoothing spline, sampled every 0.1 mm.
+    """The profile smoothed by a cubic smoothing spline, sampled every 0.1 mm
+    (:func:`railhunt.contact.smoothing.smooth_profile_points`: ``tolerance`` in m, or
+    ``"auto"``); ``meta["smoothing"]`` the tolerance used, ``meta["noise"]`` the noise
+    estimated (m)."""
+    from railhunt.contact.smoothing import smooth_profile_points
 
-    Parameters
-    ----------
-    profile : Profile
-        Its points.
-    tolerance : float or "auto"
-        RMS normal distance (m) between the points and the smoothed profile, in
-        [0, 0.2 mm]; ``"auto"``: the noise estimated from the points
-        (:mod:`railhunt.contact.smoothing`).
-    where : str
-        The file, for the messages.
-
-    Returns
-    -------
-    Profile
-        ``meta["smoothing"]`` the tolerance used (m), ``meta["noise"]`` the noise
-        estimated (m); a wheel's ``z`` is referred again to its tape circle.
-    """
-    from railhunt.contact.smoothing import noise_estimate, smooth_points
-
-    label = where or profile.name
-    if isinstance(tolerance, str):
-        if tolerance != "auto":
-            raise ProfileError(f"smooth = {tolerance!r} is invalid: must be 'auto' or a "
-                               "tolerance in m")  # fmt: skip
-        tolerance = None
-    elif isinstance(tolerance, bool) or not isinstance(tolerance, int | float):
-        raise ProfileError(f"smooth = {tolerance!r} is invalid: must be 'auto' or a "
-                           "tolerance in m")  # fmt: skip
-    noise = noise_estimate(profile.y, profile.z)
     try:
-        y, z, used = smooth_points(profile.y, profile.z, tolerance)
+        y, z, used, noise = smooth_profile_points(profile.y, profile.z, profile.kind,
+                                                  tolerance, where or profile.name)
     except ValueError as exc:
-        raise ProfileError(f"profile {label!r}: {exc}") from None
-    if not np.all(np.isfinite(z)):
-        raise ProfileError(f"profile {label!r}: its smoothing spline is not finite: are its "
-                           "points one profile?")  # fmt: skip
-    if profile.kind == "wheel" and y[0] <= 0.0 <= y[-1]:
-        z = z - np.interp(0.0, y, z)
-    elif profile.kind == "rail":
-        z = z - z.min()
+        raise ProfileError(str(exc)) from None
     meta = {**profile.meta, "smoothing": used, "noise": noise}
     return Profile(y, z, profile.kind, profile.name, profile.source, meta)
 

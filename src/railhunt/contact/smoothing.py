@@ -25,7 +25,7 @@ import math
 
 import numpy as np
 
-__all__ = ["MIN_TOLERANCE", "STEP", "noise_estimate", "smooth_points"]
+__all__ = ["MIN_TOLERANCE", "STEP", "noise_estimate", "smooth_points", "smooth_profile_points"]
 
 #: Smallest tolerance (m) used: below it a file's rounding (0.1 um) is all there is.
 MIN_TOLERANCE = 0.5e-6
@@ -102,3 +102,33 @@ def smooth_points(
     if yy[-1] < y[-1] - 1e-9:
         yy = np.append(yy, y[-1])
     return yy, spline(yy * 1e3) * 1e-3, float(tolerance)
+
+
+def smooth_profile_points(
+    y: np.ndarray, z: np.ndarray, kind: str, tolerance: float | str = "auto", where: str = ""
+) -> tuple[np.ndarray, np.ndarray, float, float]:
+    """:func:`smooth_points` for a wheel or rail profile: ``tolerance`` a float (m) or
+    ``"auto"``; a wheel's ``z`` referred again to its tape circle (``z = 0`` at ``y = 0``),
+    a rail's to its top. Returns ``(y, z, tolerance used, noise estimated)``; a
+    ``ValueError`` names ``where``."""
+    if isinstance(tolerance, str):
+        if tolerance != "auto":
+            raise ValueError(f"profile {where!r}: smooth = {tolerance!r} is invalid: must be "
+                             "'auto' or a tolerance in m")  # fmt: skip
+        tolerance = None
+    elif isinstance(tolerance, bool) or not isinstance(tolerance, int | float):
+        raise ValueError(f"profile {where!r}: smooth = {tolerance!r} is invalid: must be "
+                         "'auto' or a tolerance in m")  # fmt: skip
+    noise = noise_estimate(y, z)
+    try:
+        ys, zs, used = smooth_points(y, z, tolerance)
+    except ValueError as exc:
+        raise ValueError(f"profile {where!r}: {exc}") from None
+    if not np.all(np.isfinite(zs)):
+        raise ValueError(f"profile {where!r}: its smoothing spline is not finite: are its "
+                         "points one profile?")  # fmt: skip
+    if kind == "wheel" and ys[0] <= 0.0 <= ys[-1]:
+        zs = zs - np.interp(0.0, ys, zs)
+    elif kind == "rail":
+        zs = zs - zs.min()
+    return ys, zs, used, noise

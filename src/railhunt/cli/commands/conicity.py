@@ -9,7 +9,7 @@ from pathlib import Path
 
 import click
 
-from railhunt.cli.commands.contact import _inclination
+from railhunt.cli.commands.contact import parse_inclination
 from railhunt.cli.errors import CliError, user_input
 from railhunt.cli.files import OutputPath
 from railhunt.cli.options import check_outputs, number_range, overwrite_option
@@ -72,7 +72,7 @@ def _bands_mm(bands: list) -> str:
 @click.option("--rail", "rail", default="UIC60", show_default=True, metavar="FILE|UIC60",
               help="Upright rail profile: MiniProf .ban, SIMPACK .prr or 'y z' file in mm, "
                    "or UIC60 for the analytic 60E1 head.")
-@click.option("--inclination", default="1:40", show_default=True, callback=_inclination,
+@click.option("--inclination", default="1:40", show_default=True, callback=parse_inclination,
               help="Rail inclination: 1:40, 1:20, none, or a tangent in [0, 0.1].")
 @click.option("--gauge", default=1435.0, show_default=True, metavar="MM",
               callback=number_range("mm", 500.0, 2000.0), help="Track gauge (mm).")
