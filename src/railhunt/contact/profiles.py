@@ -182,8 +182,7 @@ def read_profile(
         estimated, :mod:`railhunt.contact.smoothing`). Default ``"auto"`` for MiniProf
         files, none for SIMPACK and text files.
     flange_back : float
-        A MiniProf wheel's tape circle from its flange back (m), 70 mm for EN 13715
-        profiles (``y = X - flange_back``).
+        A MiniProf wheel's tape circle from its flange back (m), EN 13715: 70 mm.
 
     Returns
     -------
@@ -256,7 +255,7 @@ def read_profile(
     return smoothed(profile, smooth, str(path)) if smooth != 0.0 else profile
 
 
-def _check_kind(kind: str) -> None:
+def _check_kind(kind: str) -> None:  # noqa: D103 - a kind's check
     if kind not in ("wheel", "rail"):
         raise ProfileError(f"kind = {kind!r} is invalid: must be 'wheel' or 'rail'")
 
