@@ -11,9 +11,12 @@ Profile coordinates (SI, metres), the same for wheels and rails:
 The standard S1002 wheel (EN 13715, the piecewise polynomials and arcs of the standard's
 sections A-H, coefficients as published with the standard) and the UIC60 / 60E1 rail head
 (EN 13674-1: crown R300, R80, R13 corner, 1:20 head flank) are generated analytically.
-SIMPACK profile files (``.prw`` wheel, ``.prr`` rail) and two-column ``y z`` text/CSV
-files (mm) are read; the SIMPACK header's unit factor, shifts, rotation and mirroring
-flags are applied, which brings SIMPACK files into the convention above.
+Three file formats are read (:func:`read_profile`): SIMPACK profile files (``.prw``
+wheel, ``.prr`` rail), whose header's unit factor, shifts, rotation and mirroring flags are
+applied, which brings them into the convention above; MiniProf exports (``.whl`` wheel,
+``.ban`` rail, :mod:`railhunt.contact.miniprof`), turned from MiniProf's axes (``X`` from
+the flange back, ``Y`` up) into it and smoothed (:mod:`railhunt.contact.smoothing`); and
+two-column ``y z`` text/CSV files (mm), already in it.
 """
 
 from __future__ import annotations
@@ -31,6 +34,7 @@ __all__ = [
     "Profile",
     "ProfileError",
     "read_profile",
+    "smoothed",
     "write_profile",
     "s1002",
     "shipped_profile",
@@ -43,6 +47,8 @@ SHIPPED = {
     "S1002": "MBench_S1002_v3.prw",
     "UIC60": "MBench_UIC60_v3.prr",
     "S1002_worn": "worn_s1002.prw",
+    "worn_hollow_1mm": "worn_hollow_1mm.whl",
+    "worn_hollow_2mm": "worn_hollow_2mm.whl",
 }
 
 
@@ -145,43 +151,53 @@ _NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eEdD][-+]?\d+)?"
 
 
 def read_profile(
-    path: str | Path, kind: str | None = None, *, mirror_y: bool = False, repair: bool = False
+    path: str | Path, kind: str | None = None, *, mirror_y: bool = False, repair: bool = False,
+    smooth: float | str | None = None, flange_back: float = 0.070,
 ) -> Profile:
-    """Read a profile file: SIMPACK ``.prw``/``.prr`` or two columns ``y z`` in mm.
+    """Read a profile file: SIMPACK ``.prw``/``.prr``, MiniProf ``.whl``/``.ban`` or two
+    columns ``y z`` in mm.
 
     Parameters
     ----------
     path : str or pathlib.Path
-        The file. SIMPACK files are recognised by ``point.begin``/``point.end``; other
-        files are read as whitespace-, comma- or semicolon-separated ``y z`` pairs in mm
-        (lines starting with ``#``, ``!`` or ``%`` and non-numeric header lines skipped).
+        The file. SIMPACK files are recognised by ``point.begin``/``point.end``; MiniProf
+        files by their extension, their first lines (``#MINIWHEELPROF``, ``MINIPROF``) or
+        their header keywords (``ColumnDef=``, ``XYPoints=`` ...,
+        :mod:`railhunt.contact.miniprof`); other files are read as whitespace-, comma- or
+        semicolon-separated ``y z`` pairs in mm (lines starting with ``#``, ``!`` or
+        ``%`` and non-numeric header lines skipped).
     kind : {"wheel", "rail"}, optional
-        Default: from the SIMPACK header's ``type`` (1 wheel, 0 rail) or the extension
-        (``.prw``/``.whe`` wheel, ``.prr``/``.rai`` rail).
+        Default: from the SIMPACK header's ``type`` (1 wheel, 0 rail), a MiniProf file's
+        ``#MINIWHEELPROF`` mark, or the extension (``.prw``/``.whe``/``.whl`` wheel,
+        ``.prr``/``.rai``/``.ban`` rail).
     mirror_y : bool
-        Mirror ``y`` after reading (for files whose field side is at negative ``y``).
+        Mirror ``y`` (field side at negative ``y``); a MiniProf file's ``X`` is negated
+        before it is put into railhunt's axes.
     repair : bool
         Sort the points of a profile whose ``y`` is not monotonic (with a warning naming
-        the file and the first offending point) instead of refusing it.
+        the file and the first offending point) instead of refusing it; in a MiniProf
+        file, drop the points that fold back.
+    smooth : float or "auto", optional
+        Smoothing-spline tolerance (m, RMS normal distance; 0 none; ``"auto"`` the noise
+        estimated, :mod:`railhunt.contact.smoothing`). Default ``"auto"`` for MiniProf
+        files, none for SIMPACK and text files.
+    flange_back : float
+        A MiniProf wheel's tape circle from its flange back (m), EN 13715: 70 mm.
 
     Returns
     -------
     Profile
-        In metres, in the convention of the module docstring.
+        In metres, in the convention of the module docstring (smoothed: ``meta``'s
+        ``smoothing`` and ``noise``, m).
 
     Raises
     ------
     ProfileError
-        An unreadable file, or (without ``repair``) points whose ``y`` goes back and
-        forth: the file and the first point out of order are named. A profile listed
-        from the field side to the flange (``y`` falling throughout) is monotonic. And
-        a file that cannot be the profile it is given as
-        (:mod:`railhunt.contact.profile_checks`): decimal commas, a SIMPACK header of
-        the other kind, fewer than 20 points, values in metres (or not in mm), a rail
-        head given as the wheel or a wheel as the rail. A single point far off its
-        neighbours is kept with a warning. A UTF-8 byte-order mark is skipped.
+        An unreadable file, points whose ``y`` goes back and forth (without ``repair``;
+        the first named), a file that cannot be the profile it is given as
+        (:mod:`.profile_checks`); a MiniProf file names its line (:mod:`.miniprof`).
     """
-    from railhunt.contact import profile_checks
+    from railhunt.contact import miniprof, profile_checks
 
     path = Path(path)
     try:
@@ -189,17 +205,36 @@ def read_profile(
     except OSError as exc:
         raise ProfileError(f"profile file {str(path)!r} cannot be read: {exc}") from exc
     meta: dict = {}
+    suffix = path.suffix.lower()
+    measured = False
     if re.search(r"^\s*point\.begin", text, flags=re.MULTILINE):
         y, z, meta = _parse_simpack(text, str(path))
         if kind is None and "type" in meta:
             kind = "wheel" if int(meta["type"]) == 1 else "rail"
+    elif miniprof.is_miniprof(text, suffix):
+        measured = True
+        if kind is None:
+            kind = miniprof.EXTENSIONS.get(suffix)
+        if kind is None and "#miniwheelprof" in text[:200].lower():
+            kind = "wheel"
+        if kind is None:
+            raise ProfileError(f"profile file {str(path)!r} is a MiniProf file, but its "
+                               f"extension {suffix!r} says not whether a wheel (.whl) or a "
+                               "rail (.ban); pass kind='wheel' or kind='rail'")  # fmt: skip
+        _check_kind(kind)
+        try:
+            y, z, meta = miniprof.parse_miniprof(text, kind, str(path), mirror_y=mirror_y,
+                                                 repair=repair, flange_back=flange_back)
+        except ValueError as exc:
+            raise ProfileError(str(exc)) from None
+        mirror_y = False  # applied to X above
     else:
         _checked(profile_checks.check_decimal_commas, text, str(path))
         y, z = _parse_columns(text, str(path))
         y, z = y * 1e-3, z * 1e-3
-    _check_monotonic(y, str(path), repair)
+    if not measured:
+        _check_monotonic(y, str(path), repair)
     if kind is None:
-        suffix = path.suffix.lower()
         if suffix in (".prw", ".whe"):
             kind = "wheel"
         elif suffix in (".prr", ".rai"):
@@ -209,11 +244,36 @@ def read_profile(
                 f"profile file {str(path)!r}: kind cannot be inferred from the extension "
                 f"{suffix!r}; pass kind='wheel' or kind='rail'"
             )
+    _check_kind(kind)
     _checked(profile_checks.check_kind, meta, kind, str(path))
     _checked(profile_checks.check_shape, y, z, kind, str(path))
     if mirror_y:
         y = -y
-    return Profile(y, z, kind, path.name, str(path), meta)
+    profile = Profile(y, z, kind, path.name, str(path), meta)
+    if smooth is None:
+        smooth = "auto" if measured else 0.0
+    return smoothed(profile, smooth, str(path)) if smooth != 0.0 else profile
+
+
+def _check_kind(kind: str) -> None:  # noqa: D103 - a kind's check
+    if kind not in ("wheel", "rail"):
+        raise ProfileError(f"kind = {kind!r} is invalid: must be 'wheel' or 'rail'")
+
+
+def smoothed(profile: Profile, tolerance: float | str = "auto", where: str = "") -> Profile:
+    """The profile smoothed by a cubic smoothing spline, sampled every 0.1 mm
+    (:func:`railhunt.contact.smoothing.smooth_profile_points`: ``tolerance`` in m, or
+    ``"auto"``); ``meta["smoothing"]`` the tolerance used, ``meta["noise"]`` the noise
+    estimated (m)."""
+    from railhunt.contact.smoothing import smooth_profile_points
+
+    try:
+        y, z, used, noise = smooth_profile_points(profile.y, profile.z, profile.kind,
+                                                  tolerance, where or profile.name)
+    except ValueError as exc:
+        raise ProfileError(str(exc)) from None
+    meta = {**profile.meta, "smoothing": used, "noise": noise}
+    return Profile(y, z, profile.kind, profile.name, profile.source, meta)
 
 
 def _checked(check, *args) -> None:  # noqa: ANN001 - a check of profile_checks
@@ -225,10 +285,15 @@ def _checked(check, *args) -> None:  # noqa: ANN001 - a check of profile_checks
 
 
 def write_profile(profile: Profile, path: str | Path, comment: str = "") -> Path:
-    """Write a profile as a SIMPACK file (``.prw``/``.prr``) or two columns ``y z`` in mm.
+    """Write a profile as a SIMPACK file (``.prw``/``.prr``), a MiniProf file
+    (``.whl``/``.ban``) or two columns ``y z`` in mm.
 
     The inverse of :func:`read_profile`: reading the file back gives the same points to
-    1e-10 m, in the convention of the module docstring (no shift, rotation or mirroring).
+    1e-10 m, in the convention of the module docstring (no shift, rotation or mirroring);
+    a MiniProf file's points are written as MiniProf writes them, with four decimals in
+    mm (0.05 um), in MiniProf's axes (:func:`railhunt.contact.miniprof.miniprof_text`,
+    the tape circle 70 mm from the flange back); read it back with ``smooth=0`` for the
+    same points.
 
     Parameters
     ----------
@@ -246,6 +311,12 @@ def write_profile(profile: Profile, path: str | Path, comment: str = "") -> Path
         The file written.
     """
     path = Path(path)
+    if path.suffix.lower() in (".whl", ".ban"):
+        from railhunt.contact.miniprof import miniprof_text
+
+        path.write_text(miniprof_text(profile.y, profile.z, profile.kind, name=path.name,
+                                      comment=comment), encoding="utf-8")  # fmt: skip
+        return path
     simpack = path.suffix.lower() in (".prw", ".prr")
     mark = "!" if simpack else "#"
     lines = [f"{mark} {line}".rstrip() for line in comment.splitlines()]

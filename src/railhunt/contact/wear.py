@@ -26,7 +26,8 @@ import numpy as np
 
 from railhunt.contact.profiles import Profile, ProfileError
 
-__all__ = ["WORN_S1002_COMMENT", "hollow_wear_depth", "hollow_worn", "worn_s1002"]
+__all__ = ["MEASURED_LIKE", "WORN_S1002_COMMENT", "hollow_wear_depth", "hollow_worn",
+           "measured_like", "worn_s1002", "write_measured_like"]
 
 #: Header of the shipped ``railhunt/data/profiles/worn_s1002.prw`` (see :func:`worn_s1002`).
 WORN_S1002_COMMENT = """\
@@ -96,3 +97,61 @@ def worn_s1002(path: str | None = None) -> Profile:
     if path is not None:
         write_profile(worn, path, WORN_S1002_COMMENT)
     return worn
+
+
+#: The measured-like worn wheels shipped in MiniProf format: file name -> (hollow depth,
+#: band centre, band width) in m, and the seed of their measurement noise.
+MEASURED_LIKE = {
+    "worn_hollow_1mm.whl": (1.0e-3, 5e-3, 60e-3, 101),
+    "worn_hollow_2mm.whl": (2.0e-3, 5e-3, 60e-3, 102),
+}
+#: RMS (m) of the measurement noise of :func:`measured_like`, normal to the profile.
+MEASURED_NOISE = 5e-6
+#: Point spacing (m of arc) of :func:`measured_like`, as a MiniProf gauge records.
+MEASURED_SPACING = 0.25e-3
+
+
+def measured_like(depth: float, centre: float, width: float, seed: int,
+                  noise: float = MEASURED_NOISE, name: str = "") -> str:  # fmt: skip
+    """A MiniProf wheel file (text) of a hollow-worn S1002 as a gauge would measure it.
+
+    ``hollow_worn(s1002(), depth, centre, width)`` sampled every
+    :data:`MEASURED_SPACING` of arc from its flange back to its field-side edge, each point
+    moved normal to the profile by Gaussian noise of RMS ``noise`` (seeded), after a run of
+    points down the wheel's back face (``X`` = 0 with the same noise, 15 mm below the
+    tape line up to the flange), in MiniProf's axes and layout
+    (:mod:`railhunt.contact.miniprof`). Generated, not measured: for examples and tests.
+    """
+    from railhunt.contact.miniprof import miniprof_text
+    from railhunt.contact.profiles import s1002
+
+    worn = hollow_worn(s1002(step=1e-5), depth, centre, width)
+    seg = np.hypot(np.diff(worn.y), np.diff(worn.z))
+    s = np.concatenate([[0.0], np.cumsum(seg)])
+    at = np.arange(0.0, s[-1], MEASURED_SPACING)
+    y, z = np.interp(at, s, worn.y), np.interp(at, s, worn.z)
+    ty, tz = np.gradient(y), np.gradient(z)
+    norm = np.hypot(ty, tz)
+    rng = np.random.default_rng(seed)
+    e = rng.normal(0.0, noise, y.size)
+    y, z = y - e * tz / norm, z + e * ty / norm
+    face = np.arange(-15e-3, z[0], MEASURED_SPACING)
+    y_face = -0.070 + rng.normal(0.0, noise, face.size)
+    comment = (f"railhunt: a measured-like worn wheel (generated, not measured): S1002 with "
+               f"hollow wear depth {depth * 1e3:g} mm, centre {centre * 1e3:+g} mm, width "
+               f"{width * 1e3:g} mm\nnoise {noise * 1e6:g} um RMS normal to the profile, "
+               f"seed {seed}; railhunt.contact.wear.measured_like")  # fmt: skip
+    return miniprof_text(np.concatenate([y_face, y]), np.concatenate([face, z]), "wheel",
+                         name=name, comment=comment)  # fmt: skip
+
+
+def write_measured_like(folder: str) -> list[str]:
+    """Write the shipped measured-like wheels (:data:`MEASURED_LIKE`) into ``folder``."""
+    from pathlib import Path
+
+    paths = []
+    for name, (depth, centre, width, seed) in MEASURED_LIKE.items():
+        path = Path(folder) / name
+        path.write_text(measured_like(depth, centre, width, seed, name=name), encoding="utf-8")
+        paths.append(str(path))
+    return paths

@@ -15,7 +15,12 @@ velocities in mm/s, times in s, frequencies in Hz, speeds in km/h and swept para
 the paper's Table 1 units (kN*s/m, MN/m, MN); curve radii and distances in m, forces in kN.
 """
 
-from railhunt.plots.contact import contact_geometry_figure, plot_contact_geometry
+from railhunt.plots.contact import (
+    conicity_histogram_figure,
+    contact_geometry_figure,
+    plot_conicity_histogram,
+    plot_contact_geometry,
+)
 from railhunt.plots.creep import creep_figure, plot_creep_curves
 from railhunt.plots.curves import (
     curve_entry_figure,
@@ -52,6 +57,7 @@ __all__ = [
     "WHEELSET_CHOICES",
     "bifurcation_family_figure",
     "bifurcation_figure",
+    "conicity_histogram_figure",
     "contact_geometry_figure",
     "creep_figure",
     "curve_entry_figure",
@@ -60,6 +66,7 @@ __all__ = [
     "new_figure",
     "plot_bifurcation",
     "plot_bifurcation_family",
+    "plot_conicity_histogram",
     "plot_contact_geometry",
     "plot_creep_curves",
     "plot_curve_entry",

@@ -115,3 +115,49 @@ def plot_contact_geometry(geometry: ContactGeometry, path: str | os.PathLike[str
         The file written.
     """
     return save_figure(contact_geometry_figure(geometry), path)
+
+
+def conicity_histogram_figure(names: list[str], conicities: list[float],
+                              amplitude: float = 3e-3) -> Figure:  # fmt: skip
+    """The figure of :func:`plot_conicity_histogram`, not saved."""
+    values = np.array([v for v in conicities if np.isfinite(v)], dtype=float)
+    fig = new_figure(6.5, 3.6)
+    ax = fig.subplots()
+    top = max(0.6, float(values.max()) + 0.05) if values.size else 0.6
+    bins = np.arange(0.0, top + 0.025, 0.025)
+    ax.hist(values, bins=bins, color=LEFT, edgecolor="white")
+    ax.set_xlabel(f"equivalent conicity at {amplitude * 1e3:g} mm (EN 15302)")
+    ax.set_ylabel("wheelsets")
+    ax.yaxis.get_major_locator().set_params(integer=True)
+    if len(names) <= 12:
+        for name, value in zip(names, conicities, strict=True):
+            if np.isfinite(value):
+                ax.annotate(name, (value, 0), xytext=(0, 4), textcoords="offset points",
+                            rotation=90, fontsize=7, ha="center", va="bottom")  # fmt: skip
+    ax.set_title(f"{len(names)} wheelset{'s' if len(names) != 1 else ''}", fontsize=9)
+    return fig
+
+
+def plot_conicity_histogram(names: list[str], conicities: list[float],
+                            path: str | os.PathLike[str],
+                            amplitude: float = 3e-3) -> Path:  # fmt: skip
+    """Histogram of a fleet's equivalent conicities (bins of 0.025), each wheel named
+    (up to 12) at its value.
+
+    Parameters
+    ----------
+    names : list of str
+        The wheels.
+    conicities : list of float
+        Their equivalent conicities (NaN: left out).
+    path : str or os.PathLike
+        Output file; the format follows the suffix.
+    amplitude : float
+        The amplitude (m) they are taken at, for the axis label.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+    """
+    return save_figure(conicity_histogram_figure(names, conicities, amplitude), path)

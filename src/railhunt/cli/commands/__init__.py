@@ -5,6 +5,7 @@ reports from ``stochastic.py``); COMMANDS lists them in the order ``railhunt --h
 from __future__ import annotations
 
 from railhunt.cli.commands.bifurcation import bifurcation_command
+from railhunt.cli.commands.conicity import conicity_command
 from railhunt.cli.commands.contact import contact_command
 from railhunt.cli.commands.creep import creep_command
 from railhunt.cli.commands.critical_speed import critical_speed_command
@@ -39,6 +40,7 @@ COMMANDS = (
     bifurcation_command,
     frequency_command,
     contact_command,
+    conicity_command,
     creep_command,
     spectrogram_command,
     sweep_command,

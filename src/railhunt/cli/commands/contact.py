@@ -38,6 +38,9 @@ def _inclination(ctx: click.Context, param: click.Parameter, value: str) -> floa
     return incl
 
 
+#: ``--inclination``'s parser, for the commands that share the option.
+parse_inclination = _inclination
+
 RULES = (
     Ordered("--step", "--y-max",
             "--step {y_step:g} mm is invalid: must be at most --y-max {y_max:g} mm"),
