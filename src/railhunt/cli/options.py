@@ -254,23 +254,35 @@ def vehicle_options(func: Callable[..., Any]) -> Callable[..., Any]:
     return func
 
 
-def vehicle_help() -> str:
+def vehicle_help(lead: str = "Vehicle TOML file (SI units)", default: str = "paper2019") -> str:
     """The help of ``--vehicle``: every vehicle shipped in railhunt's data directory, by
     name (read when the help is shown, so that a vehicle added to the directory is listed
-    by every command)."""
+    by every command).
+
+    Parameters
+    ----------
+    lead : str
+        What the option is, before the list of names.
+    default : str
+        The vehicle used when the option is not given.
+    """
     from railhunt.vehicle import shipped_vehicles
 
-    return ("Vehicle TOML file (SI units), or the name of a vehicle shipped with railhunt: "
+    return (f"{lead}, or the name of a vehicle shipped with railhunt: "
             f"{', '.join(shipped_vehicles())} ('railhunt vehicles' describes each, 'railhunt "
-            "parameters --vehicle NAME' lists its parameters). Default: paper2019.")
+            f"parameters --vehicle NAME' lists its parameters). Default: {default}.")
 
 
 class VehicleOption(click.Option):
     """``--vehicle``, whose help lists the shipped vehicles (:func:`vehicle_help`), read
     from the data directory when the help is shown, not when the command line starts."""
 
+    #: The help's opening words and default (:func:`vehicle_help`).
+    help_lead: str = "Vehicle TOML file (SI units)"
+    help_default: str = "paper2019"
+
     def get_help_record(self, ctx: click.Context) -> tuple[str, str] | None:
-        self.help = vehicle_help()
+        self.help = vehicle_help(self.help_lead, self.help_default)
         return super().get_help_record(ctx)
 
 

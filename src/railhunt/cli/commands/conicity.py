@@ -12,7 +12,7 @@ import click
 from railhunt.cli.commands.contact import parse_inclination
 from railhunt.cli.errors import CliError, user_input
 from railhunt.cli.files import OutputPath
-from railhunt.cli.options import check_outputs, number_range, overwrite_option
+from railhunt.cli.options import VehicleOption, check_outputs, number_range, overwrite_option
 from railhunt.cli.output import json_safe, stdout_console, traced
 from railhunt.cli.rules import command
 
@@ -35,6 +35,14 @@ def _smooth(ctx: click.Context, param: click.Parameter, value: str) -> float | s
         raise click.BadParameter(f"{value!r} mm is invalid: the tolerance must be in "
                                  "[0, 0.2] mm")  # fmt: skip
     return mm * 1e-3
+
+
+class FleetVehicleOption(VehicleOption):
+    """``--vehicle`` of the fleet: the vehicle whose wheel profile each file replaces."""
+
+    help_lead = ("Vehicle for --critical-speed, whose wheel profile each file replaces: a "
+                 "TOML file with a [contact] section")
+    help_default = DEFAULT_VEHICLE
 
 
 def _vehicle(value: str) -> object:
@@ -100,10 +108,8 @@ def _bands_mm(bands: list) -> str:
 @click.option("--critical-speed", "critical", is_flag=True,
               help="Also the linear and nonlinear critical speeds of --vehicle on each "
                    "wheelset (about 10 s per wheel).")
-@click.option("--vehicle", "vehicle", default=DEFAULT_VEHICLE, show_default=True,
-              metavar="FILE|NAME",
-              help="Vehicle for --critical-speed: a shipped vehicle or TOML file with a "
-                   "[contact] section, whose wheel profile each file replaces.")
+@click.option("--vehicle", "vehicle", default=DEFAULT_VEHICLE, metavar="FILE|NAME",
+              cls=FleetVehicleOption)
 @click.option("--png", "png_file", type=OutputPath(),
               help="Histogram of the fleet's equivalent conicities.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (SI units).")
