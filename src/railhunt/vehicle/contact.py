@@ -97,7 +97,8 @@ class ContactSpec:
             lines.append(f"{key} = {getattr(self, key)!r}")
         if self.smooth is not None:
             value = self.smooth
-            lines.append(f"smooth = {toml_string(value) if isinstance(value, str) else repr(value)}")
+            text = toml_string(value) if isinstance(value, str) else repr(value)
+            lines.append(f"smooth = {text}")
         return lines
 
 
