@@ -260,3 +260,24 @@ def test_a_contact_smoothing_out_of_range_is_refused_naming_it(value):
 
     with pytest.raises(ValueError, match=r"contact smooth = .* is invalid: must be"):
         ContactSpec(smooth=value)
+
+
+def test_the_conicity_command_writes_the_fleet_as_csv(tmp_path):
+    import csv
+    from importlib import resources
+
+    path = resources.files("railhunt") / "data" / "profiles" / "worn_hollow_2mm.whl"
+    out = tmp_path / "fleet.csv"
+    result = run("conicity", "S1002", str(path), "--csv", str(out))
+    assert result.exit_code == 0, result.output
+    rows = list(csv.DictReader(out.open()))
+    assert [r["wheel"] for r in rows] == ["S1002", "worn_hollow_2mm.whl"]
+    # the same conicities as the JSON output (0.183 and 0.436 at 3 mm)
+    data = json.loads(run("conicity", "S1002", str(path), "--json").output)
+    for row, wheel in zip(rows, data["wheels"], strict=True):
+        assert float(row["equivalent_conicity"]) == pytest.approx(
+            wheel["equivalent_conicity"], rel=1e-5)
+        bands = [[float(v) * 1e-3 for v in pair.split(":")]
+                 for pair in row["two_point_bands_mm"].split(";")]  # fmt: skip
+        assert np.allclose(bands, wheel["two_point_bands_m"], atol=1e-7)
+    assert (tmp_path / "fleet.csv.meta.json").is_file()
