@@ -2,6 +2,7 @@
 its lead against closed forms, mirror symmetry, yaw 0 against the rigid contact table,
 load sharing between two patches and the creepages of pure rolling."""
 
+import json
 import math
 
 import numpy as np
@@ -206,3 +207,22 @@ def test_bad_arguments_are_one_clear_line(profiles):
     c = contact_patches(w, r, 0.0)
     with pytest.raises(ValueError, match="speed"):
         c.creepages(0.0, 1.0)
+
+
+def test_cli_patches_json_table_and_chart(tmp_path):
+    """``railhunt contact --patches --yaw``: one JSON object (SI) whose yawed flange leads,
+    the table, and the contact-point chart."""
+    from test_cli import run
+
+    res = run("contact", "--patches", "--yaw", "5", "--y-max", "8", "--step", "1", "--json")
+    assert res.exit_code == 0, res.output
+    data = json.loads(res.stdout)
+    assert data["yaw_rad"] == pytest.approx(0.005)
+    flange = data["contacts"][-1]["left"][0]  # y = +8 mm: on the flange
+    assert flange["contact_angle"] > math.radians(45.0) and flange["x"] > 0.003
+    assert sum(p["vertical_load"] for p in data["contacts"][-1]["left"]) == (
+        pytest.approx(53410.0, rel=1e-6))
+    png = tmp_path / "patches.png"
+    res = run("contact", "--patches", "--y-max", "5", "--step", "0.25", "--png", str(png))
+    assert res.exit_code == 0, res.output
+    assert "two-point contact at" in res.stdout and png.stat().st_size > 10_000

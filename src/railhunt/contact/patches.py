@@ -65,7 +65,7 @@ from railhunt.contact.locus import (
 from railhunt.contact.profiles import Profile
 from railhunt.results import Columns, ResultDisplay, Row
 
-__all__ = ["ContactPatch", "WheelsetContact", "contact_patches"]
+__all__ = ["ContactPatch", "WheelsetContact", "contact_patches", "contact_patches_along"]
 
 #: Valleys of the gap function more than this above the lowest one are never patches (m).
 _CANDIDATE_DEPTH = 1e-3
@@ -292,13 +292,46 @@ def contact_patches(
     search = patch_search(wheel, rail, rail_inclination=rail_inclination, gauge=gauge,
                           back_to_back=back_to_back, flange_back=flange_back, r0=r0,
                           gauge_depth=gauge_depth, sample_step=sample_step)  # fmt: skip
-    phi = search.roll(float(y), float(yaw))
+    return _place(search, wheel, float(y), float(yaw), pens, loads, separation,
+                  shear_modulus, poisson, curvature_window)  # fmt: skip
+
+
+def contact_patches_along(wheel: Profile, rail: Profile, ys: np.ndarray, yaw: float = 0.0,
+                          **options: object) -> list[WheelsetContact]:  # fmt: skip
+    """:func:`contact_patches` at each lateral displacement of ``ys`` (m), one yaw (rad);
+    the profiles are sampled once. ``options``: the keywords of :func:`contact_patches`."""
+    ys = np.asarray(ys, dtype=np.float64)
+    if ys.ndim != 1 or ys.size == 0:
+        raise ValueError("ys must be a non-empty 1-D array of lateral displacements (m)")
+    contact_patches(wheel, rail, float(ys[0]), yaw, **options)  # checks every argument
+    names = ("rail_inclination", "gauge", "back_to_back", "flange_back", "r0", "gauge_depth",
+             "sample_step")  # fmt: skip
+    search = patch_search(wheel, rail, **{k: options[k] for k in names if k in options})
+    pens = _pair(options.get("penetration", 0.0), "penetration", 0.0, 1e-3)
+    load = options.get("normal_load")
+    loads = None if load is None else _pair(load, "normal_load", 0.0, 1e7)
+    out = []
+    for y in ys:
+        if not (math.isfinite(y) and abs(y) <= 0.03):
+            raise ValueError(f"y = {y!r} is invalid: must be in [-0.03, 0.03]")
+        out.append(_place(search, wheel, float(y), float(yaw), pens, loads,
+                          float(options.get("separation", 1e-3)),
+                          float(options.get("shear_modulus", 2.1e11 / 2.6)),
+                          float(options.get("poisson", 0.3)),
+                          float(options.get("curvature_window", 2e-3))))  # fmt: skip
+    return out
+
+
+def _place(search: object, wheel: Profile, y: float, yaw: float, pens: tuple[float, float],
+           loads: tuple[float, float] | None, separation: float, shear_modulus: float,
+           poisson: float, curvature_window: float) -> WheelsetContact:  # fmt: skip
+    """The patches of the wheelset ``search`` at ``(y, yaw)`` (:func:`contact_patches`)."""
+    phi = search.roll(y, yaw)
     young = 2.0 * shear_modulus * (1.0 + poisson)
     sides = []
     g_low = 0.0
     for k, locus in enumerate((search.left, search.right)):
-        g_low, raw, gap = raw_patches(locus, float(y), phi, float(yaw), _CANDIDATE_DEPTH,
-                                      separation)  # fmt: skip
+        g_low, raw, gap = raw_patches(locus, y, phi, yaw, _CANDIDATE_DEPTH, separation)
         kw = surface_curvature(wheel, np.array([p["u"] for p in raw]), curvature_window)
         kr = surface_curvature(search.rail, np.array([p["t"] for p in raw]),
                                curvature_window)  # fmt: skip
@@ -325,8 +358,8 @@ def contact_patches(
             for i, p in ((i, raw[i]) for i in keep)))  # fmt: skip
     params = dict(search.params, penetration=pens, separation=separation,
                   normal_load=loads)  # fmt: skip
-    return WheelsetContact(y=float(y), yaw=float(yaw), roll=-phi, height=-g_low,
-                           left=sides[0], right=sides[1], params=params)
+    return WheelsetContact(y=y, yaw=yaw, roll=-phi, height=-g_low, left=sides[0],
+                           right=sides[1], params=params)
 
 
 def _loaded(raw: list[dict], kw: np.ndarray, kr: np.ndarray, young: float, poisson: float,
