@@ -97,21 +97,27 @@ def _stencil(y: float, y0: float, dy: float,
 
 
 @njit(cache=True)
-def _positive(v0: float, v1: float, v2: float, v3: float, t: float) -> float:
+def _positive(v0: float, v1: float, v2: float, v3: float, h: tuple[float, float, float,
+                                                                  float]) -> float:
     """A share between nodes 1 and 2: a cubic Hermite whose node slopes are the central
     differences limited to ``3 v`` (Fritsch and Carlson's bound), so that it never falls
     below 0 and meets 0 flat where a patch sets in (continuous slope everywhere)."""
     m1 = min(max(0.5 * (v2 - v0), -3.0 * v1), 3.0 * v1)
     m2 = min(max(0.5 * (v3 - v1), -3.0 * v2), 3.0 * v2)
+    return h[0] * v1 + h[1] * m1 + h[2] * v2 + h[3] * m2
+
+
+@njit(cache=True)
+def _hermite(t: float) -> tuple[float, float, float, float]:
+    """The cubic Hermite basis ``(h00, h10, h01, h11)`` at ``t`` in ``[0, 1]``."""
     t2 = t * t
     t3 = t2 * t
-    return ((2.0 * t3 - 3.0 * t2 + 1.0) * v1 + (t3 - 2.0 * t2 + t) * m1
-            + (3.0 * t2 - 2.0 * t3) * v2 + (t3 - t2) * m2)  # fmt: skip
+    return 2.0 * t3 - 3.0 * t2 + 1.0, t3 - 2.0 * t2 + t, 3.0 * t2 - 2.0 * t3, t3 - t2
 
 
 @njit(cache=True)
 def _share(wr: np.ndarray, k: int, a0: int, a1: int, a2: int, a3: int, b0: int, b1: int,
-           t: float, p0: float, p1: float) -> float:  # fmt: skip
+           t: tuple[float, float, float, float], p0: float, p1: float) -> float:  # fmt: skip
     """A column that is never negative (offset ``k``: ``W``, ``C1``, ``K11`` ... ``K33``)
     interpolated: :func:`_positive` in ``y``, linear in ``psi``."""
     return (p0 * _positive(wr[k + b0 + a0], wr[k + b0 + a1], wr[k + b0 + a2], wr[k + b0 + a3],
@@ -133,25 +139,25 @@ def _value(wr: np.ndarray, k: int, a0: int, a1: int, a2: int, a3: int, b0: int, 
 
 @njit(cache=True)
 def _patch(wr: np.ndarray, k: int, a0: int, a1: int, a2: int, a3: int, b0: int, b1: int,
-           w0: float, w1: float, w2: float, w3: float, t: float, p0: float, p1: float,
-           side: float, cpsi: float, spsi: float, dy: float, yaw_rate: float, v: float,
-           omega: float, q: float, qth: float, mu: float, law: int,
+           w0: float, w1: float, w2: float, w3: float, t: tuple[float, float, float, float],
+           p0: float, p1: float, side: float, cpsi: float, spsi: float, dy: float,
+           yaw_rate: float, v: float, omega: float, q: float, qth: float, mu: float, law: int,
            table: np.ndarray) -> tuple[float, float, float, float, float, float, float,
-                                       float, float]:  # fmt: skip
+                                       float, float, float]:  # fmt: skip
     """One patch's unsaturated forces and saturation measures.
 
-    Returns ``(W, F_x, F_y, M_z, F_y of the creepages alone, N0, delta, d_x, d_y)``; for
+    Returns ``(W, F_x, F_y, M_z, F_y of the creepages alone, N0, cos(delta), sin(delta),
+    d_x, d_y)``; for
     the exact-table law the forces are the table's (saturated), ``F_y`` of the creepages
     alone then 0. ``W = 0``: no patch, every other value 0.
     """
     big_w = _share(wr, k + PatchColumn.W, a0, a1, a2, a3, b0, b1, t, p0, p1)
     if big_w <= 0.0:
-        return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+        return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0
     r = _value(wr, k + PatchColumn.R, a0, a1, a2, a3, b0, b1, w0, w1, w2, w3, p0, p1)
     d = _value(wr, k + PatchColumn.D, a0, a1, a2, a3, b0, b1, w0, w1, w2, w3, p0, p1)
     lead = _value(wr, k + PatchColumn.X, a0, a1, a2, a3, b0, b1, w0, w1, w2, w3, p0, p1)
     s = _value(wr, k + PatchColumn.S, a0, a1, a2, a3, b0, b1, w0, w1, w2, w3, p0, p1)
-    c1 = _share(wr, k + PatchColumn.C1, a0, a1, a2, a3, b0, b1, t, p0, p1)
     k11 = _share(wr, k + PatchColumn.K11, a0, a1, a2, a3, b0, b1, t, p0, p1)
     k22 = _share(wr, k + PatchColumn.K22, a0, a1, a2, a3, b0, b1, t, p0, p1)
     k23 = _share(wr, k + PatchColumn.K23, a0, a1, a2, a3, b0, b1, t, p0, p1)
@@ -173,16 +179,16 @@ def _patch(wr: np.ndarray, k: int, a0: int, a1: int, a2: int, a3: int, b0: int, 
     f33 = k33 * q * qth
     n0 = big_w * q / cd
     if law == CreepLaw.EXACT_TABLE and table.shape[0] > 0:
-        c = c1 * qth
+        c = _share(wr, k + PatchColumn.C1, a0, a1, a2, a3, b0, b1, t, p0, p1) * qth
         m = mu * n0
         inv = 1.0 / m
         ab = _value(wr, k + PatchColumn.AB, a0, a1, a2, a3, b0, b1, w0, w1, w2, w3, p0, p1)
         tx, ty, tm = table_creep(f11 * xi * inv, f22 * eta * inv, f23 * phi * inv,
                                  f23 / (f22 * c), f33 / (f23 * c), ab, table)  # fmt: skip
-        return big_w, m * tx, m * ty, m * c * tm, 0.0, n0, d, d_x, d_y
+        return big_w, m * tx, m * ty, m * c * tm, 0.0, n0, cd, sd, d_x, d_y
     fx = -f11 * xi
     cy = -f22 * eta
-    return big_w, fx, cy - f23 * phi, f23 * eta - f33 * phi, cy, n0, d, d_x, d_y
+    return big_w, fx, cy - f23 * phi, f23 * eta - f33 * phi, cy, n0, cd, sd, d_x, d_y
 
 
 @njit(cache=True)
@@ -219,7 +225,7 @@ def two_point_wheelset_contact(
     p = WR.TABLE + 3 + 4 * int(wr[WR.TABLE])
     n_y = int(wr[p + TwoPointHeader.N_Y])
     n_p = int(wr[p + TwoPointHeader.N_PSI])
-    i0, i1, i2, i3, w0, w1, w2, w3, ty = _stencil(y_rel, wr[p + TwoPointHeader.Y0],
+    i0, i1, i2, i3, w0, w1, w2, w3, t_y = _stencil(y_rel, wr[p + TwoPointHeader.Y0],
                                               wr[p + TwoPointHeader.DY], n_y)  # fmt: skip
     s = (psi - wr[p + TwoPointHeader.PSI0]) / wr[p + TwoPointHeader.DPSI]
     if s <= 0.0:
@@ -233,6 +239,7 @@ def two_point_wheelset_contact(
     b1 = b0 + n_y * _NODE
     a0, a1, a2, a3 = i0 * _NODE, i1 * _NODE, i2 * _NODE, i3 * _NODE
     p0, p1 = 1.0 - t, t
+    ty = _hermite(t_y)
     base = p + TwoPointHeader.DATA
     cpsi, spsi = math.cos(psi), math.sin(psi)
     omega = v / wr[WR.R0]
@@ -243,16 +250,16 @@ def two_point_wheelset_contact(
     qth_l = qth0 if q_left == n_load else np.cbrt(q_left)
     qth_r = qth0 if q_right == n_load else np.cbrt(q_right)
     nc = N_PATCH_COLUMNS
-    wl0, fxl0, fyl0, mzl0, cyl0, nl0, dl0, xl0, yl0 = _patch(
+    wl0, fxl0, fyl0, mzl0, cyl0, nl0, cl0, sl0, xl0, yl0 = _patch(
         wr, base, a0, a1, a2, a3, b0, b1, w0, w1, w2, w3, ty, p0, p1, 1.0, cpsi, spsi, dy,
         yaw_rate, v, omega, q_left, qth_l, mu, law, table)
-    wl1, fxl1, fyl1, mzl1, cyl1, nl1, dl1, xl1, yl1 = _patch(
+    wl1, fxl1, fyl1, mzl1, cyl1, nl1, cl1, sl1, xl1, yl1 = _patch(
         wr, base + nc, a0, a1, a2, a3, b0, b1, w0, w1, w2, w3, ty, p0, p1, 1.0, cpsi, spsi, dy,
         yaw_rate, v, omega, q_left, qth_l, mu, law, table)
-    wr0, fxr0, fyr0, mzr0, cyr0, nr0, dr0, xr0, yr0 = _patch(
+    wr0, fxr0, fyr0, mzr0, cyr0, nr0, cr0, sr0, xr0, yr0 = _patch(
         wr, base + 2 * nc, a0, a1, a2, a3, b0, b1, w0, w1, w2, w3, ty, p0, p1, -1.0, cpsi, spsi,
         dy, yaw_rate, v, omega, q_right, qth_r, mu, law, table)
-    wr1, fxr1, fyr1, mzr1, cyr1, nr1, dr1, xr1, yr1 = _patch(
+    wr1, fxr1, fyr1, mzr1, cyr1, nr1, cr1, sr1, xr1, yr1 = _patch(
         wr, base + 3 * nc, a0, a1, a2, a3, b0, b1, w0, w1, w2, w3, ty, p0, p1, -1.0, cpsi, spsi,
         dy, yaw_rate, v, omega, q_right, qth_r, mu, law, table)
     gl0 = _factor(law, mu, nl0, fxl0, fyl0, cyl0)
@@ -266,14 +273,13 @@ def two_point_wheelset_contact(
     fy_l = 0.0
     fy_r = 0.0
     m_z = 0.0
-    for w_, fx, fy, mz, n0, d, d_x, d_y, g, side in (
-            (wl0, fxl0, fyl0, mzl0, nl0, dl0, xl0, yl0, gl0, 1.0),
-            (wl1, fxl1, fyl1, mzl1, nl1, dl1, xl1, yl1, gl1, 1.0),
-            (wr0, fxr0, fyr0, mzr0, nr0, dr0, xr0, yr0, gr0, -1.0),
-            (wr1, fxr1, fyr1, mzr1, nr1, dr1, xr1, yr1, gr1, -1.0)):  # fmt: skip
+    for w_, fx, fy, mz, n0, cd, sd, d_x, d_y, g, side in (
+            (wl0, fxl0, fyl0, mzl0, nl0, cl0, sl0, xl0, yl0, gl0, 1.0),
+            (wl1, fxl1, fyl1, mzl1, nl1, cl1, sl1, xl1, yl1, gl1, 1.0),
+            (wr0, fxr0, fyr0, mzr0, nr0, cr0, sr0, xr0, yr0, gr0, -1.0),
+            (wr1, fxr1, fyr1, mzr1, nr1, cr1, sr1, xr1, yr1, gr1, -1.0)):  # fmt: skip
         if w_ <= 0.0:
             continue
-        cd, sd = math.cos(d), math.sin(d)
         fx *= g
         fy *= g
         # the normal force that balances the patch's share of the vertical load
