@@ -34,7 +34,7 @@ def two_point_rows(repeat: int, row: Callable) -> list:
     t0 = time.perf_counter()
     _vehicle_table(spec, 10900.0 * 9.81 / 2.0, SHEAR_MODULUS, POISSON, False)
     t_table = time.perf_counter() - t0
-    rows = [row("two-point table S1002/UIC60 1:40, y +-12 mm x yaw +-12 mrad (121 x 9)",
+    rows = [row("two-point table S1002/UIC60 1:40, y +-12 mm x yaw +-12 mrad (241 x 7)",
                 t_table, TABLE_TARGET)]
     base = Model(railhunt.Vehicle.shipped("s1002_uic60_per_point"))
     model = Model(two)

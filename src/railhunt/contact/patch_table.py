@@ -264,12 +264,14 @@ def two_point_table(
     return TwoPointTable(y=ys, psi=psis, columns=cols, static_load=float(static_load))
 
 
-#: The yaw grid of a vehicle's two-point table: +-12 mrad in steps of 3 mrad (a hunting
+#: The yaw grid of a vehicle's two-point table: +-12 mrad in steps of 4 mrad (a hunting
 #: wheelset yaws by a few mrad; beyond the grid the table is held at its edge).
 VEHICLE_YAW_MAX = 0.012
-VEHICLE_YAW_STEP = 0.003
-#: The lateral step of a vehicle's two-point table (m).
-VEHICLE_Y_STEP = 2e-4
+VEHICLE_YAW_STEP = 0.004
+#: The lateral step of a vehicle's two-point table (m): the per-point table's, so that the
+#: small cycles near the Hopf point (0.05-0.2 mm) see S1002/UIC60's tread between the
+#: centre and its contact jump at 0.25 mm as the per-point model does.
+VEHICLE_Y_STEP = 1e-4
 
 
 @functools.lru_cache(maxsize=16)
