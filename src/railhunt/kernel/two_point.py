@@ -267,8 +267,8 @@ def two_point_wheelset_contact(
     gr0 = _factor(law, mu, nr0, fxr0, fyr0, cyr0)
     gr1 = _factor(law, mu, nr1, fxr1, fyr1, cyr1)
     if law == CreepLaw.HEURISTIC:
-        beta = 0.5 * ((wl0 * gl0 + wl1 * gl1) / (wl0 + wl1)
-                      + (wr0 * gr0 + wr1 * gr1) / (wr0 + wr1))  # fmt: skip
+        beta = 0.5 * ((wl0 * gl0 + wl1 * gl1) / max(wl0 + wl1, 1e-12)
+                      + (wr0 * gr0 + wr1 * gr1) / max(wr0 + wr1, 1e-12))  # fmt: skip
         gl0 = gl1 = gr0 = gr1 = heuristic_saturation(beta)
     fy_l = 0.0
     fy_r = 0.0
