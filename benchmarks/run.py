@@ -279,6 +279,11 @@ def main(argv: list[str] | None = None) -> int:
 
     rows += contact_mechanics_rows(repeat, Row)
 
+    # Two-point contact (up to two patches per wheel, over y and yaw) against per-point.
+    from two_point import two_point_rows
+
+    rows += two_point_rows(repeat, Row)
+
     # Periodic orbits and continuation (issue 4). The orbit case warms the compiled code;
     # the whole diagram is timed once (it takes seconds).
     from railhunt.analysis.continuation import bifurcation_diagram

@@ -65,13 +65,17 @@ class Model:
         (creepage reference) and ``a`` are still used. Default: the geometry of the
         vehicle's :class:`railhunt.vehicle.ContactSpec` (its ``[contact]`` section) if it
         has one, else the polynomials.
-    contact_mechanics : {"centred", "per-point"}, optional
+    contact_mechanics : {"centred", "per-point", "two-point"}, optional
         For every wheelset instead of its layout's ``contact_mechanics``:
         ``"centred"``, the vehicle's coefficients ``f11 ... f33`` and the static wheel
         load; ``"per-point"``, each contact point's own Hertz ellipse, Kalker
         coefficients and normal force from the wheel's equilibrium
-        (:mod:`railhunt.kernel.point_contact`; needs a profile contact table). The creep
-        law ``"exact-table"`` (Kalker's exact theory, tabulated) needs ``"per-point"``.
+        (:mod:`railhunt.kernel.point_contact`; needs a profile contact table);
+        ``"two-point"``, up to two patches per wheel, each with its own normal force,
+        ellipse and creep forces at its own point, over the lateral displacement and the
+        yaw (:mod:`railhunt.kernel.two_point`; needs the vehicle's ``[contact]``
+        profiles). The creep law ``"exact-table"`` (Kalker's exact theory, tabulated)
+        needs ``"per-point"`` or ``"two-point"``.
 
     Attributes
     ----------
@@ -112,17 +116,21 @@ class Model:
         n_ws = wr.shape[0]
         mechanics = (tuple(asm.contact_mechanics) or ("centred",) * n_ws
                      if contact_mechanics is None else (contact_mechanics,) * n_ws)  # fmt: skip
-        #: Each wheelset's contact mechanics, ``"centred"`` or ``"per-point"``.
+        #: Each wheelset's contact mechanics, ``"centred"``, ``"per-point"`` or
+        #: ``"two-point"``.
         self.contact_mechanics: tuple[str, ...] = mechanics
         exact = [int(code) == CREEP_LAWS["exact-table"] for code in wr[:, WR.CREEP_LAW]]
         for j in range(n_ws):
-            if exact[j] and mechanics[j] != "per-point":
+            if exact[j] and mechanics[j] not in ("per-point", "two-point"):
                 raise ValueError("creep_law = 'exact-table' is invalid with contact_mechanics "
-                                 f"= {mechanics[j]!r}: it needs 'per-point' (each contact's "
-                                 "own ellipse)")  # fmt: skip
+                                 f"= {mechanics[j]!r}: it needs 'per-point' or 'two-point' "
+                                 "(each contact's own ellipse)")  # fmt: skip
         if "per-point" in mechanics and contact is None:
             raise ValueError("contact_mechanics = 'per-point' is invalid for this vehicle: it "
                              "needs profile contact (a [contact] section, or contact=)")
+        if "two-point" in mechanics and vehicle.contact is None:
+            raise ValueError("contact_mechanics = 'two-point' is invalid for this vehicle: it "
+                             "needs its profiles (a [contact] section)")
         creep_table = NO_CREEP_TABLE
         if any(exact):
             from railhunt.contact.creep_table import shipped_creep_table
@@ -147,6 +155,12 @@ class Model:
                 if mechanics[j] == "per-point":
                     tail = _point_tail(contact, asm.materials[j] if asm.materials else None,
                                        float(row[WR.N]), exact[j])  # fmt: skip
+                elif mechanics[j] == "two-point":
+                    from railhunt.contact.patch_table import vehicle_two_point_block
+
+                    tail = vehicle_two_point_block(
+                        vehicle.contact, asm.materials[j] if asm.materials else None,
+                        float(row[WR.N]), exact[j])  # fmt: skip
                 rows.append(np.concatenate([row[:WR.TABLE], table, tail]))
             wr = wheel_rail_rows(rows)
         self.contact = contact

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import re
 
-__all__ = ["s1002_uic60_per_point_toml"]
+__all__ = ["s1002_uic60_per_point_toml", "s1002_uic60_two_point_toml"]
 
 _HEADER = """\
 # railhunt vehicle file: the paper's vehicle (paper2019 layout) with S1002 wheels on UIC60
@@ -107,3 +107,29 @@ def s1002_uic60_per_point_toml() -> str:
     contact = ContactSpec(wheel="S1002", rail="UIC60", rail_inclination=1.0 / 40.0,
                           gauge=1.435, back_to_back=1.36, wheel_radius=0.43).toml_lines()
     return _HEADER + "\n" + body.rstrip("\n") + "\n" + "\n".join(contact) + "\n"
+
+
+_TWO_POINT_HEADER = """\
+# railhunt vehicle file: the paper's vehicle (paper2019 layout) with S1002 wheels on UIC60
+# rails inclined 1:40 (gauge 1435 mm, back-to-back 1360 mm, wheel radius 0.43 m at the
+# tape circle) and two-point contact: up to two contact patches per wheel, found on the
+# yawed wheelset's contact locus and sharing the wheel load by their elastic approach,
+# each with its own Hertz ellipse, Kalker coefficients, normal force and creepages at its
+# own point, tabulated over the lateral displacement and the yaw; the paper's heuristic
+# creep law, as in s1002_uic60_per_point, so that the two differ in their contact
+# geometry alone.
+# Written by railhunt.contact.shipped_layouts.s1002_uic60_two_point_toml(); the tests
+# check that it is what the code computes. The parameters are those of
+# s1002_uic60_table. SI units throughout.
+"""
+
+
+def s1002_uic60_two_point_toml() -> str:
+    """Text of the shipped ``s1002_uic60_two_point.toml``: ``s1002_uic60_per_point.toml``
+    with ``contact_mechanics = "two-point"``."""
+    text = s1002_uic60_per_point_toml()
+    body = text[text.index("[vehicle]"):]
+    body = body.replace('name = "s1002_uic60_per_point"', 'name = "s1002_uic60_two_point"', 1)
+    body = body.replace("contact mechanics at each contact point", "two-point contact", 1)
+    body = body.replace('contact_mechanics = "per-point"', 'contact_mechanics = "two-point"', 1)
+    return _TWO_POINT_HEADER + "\n" + body

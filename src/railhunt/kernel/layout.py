@@ -313,6 +313,54 @@ class PointColumn(IntEnum):
 #: Number of per-point columns of one wheel.
 N_POINT_COLUMNS = len(PointColumn)
 
+#: Code after a contact table: up to two contact patches per wheel, tabulated over the
+#: lateral displacement and the yaw (:mod:`railhunt.kernel.two_point`).
+TWO_POINT = 2
+
+
+class TwoPointHeader(IntEnum):
+    """Slots of the two-point block, from ``p = TABLE + 3 + 4 n`` (after the contact
+    table); the patches' columns follow at ``DATA``: for each yaw node, for each lateral
+    node, the left wheel's two slots then the right wheel's (``4 N_PATCH_COLUMNS``
+    values per node)."""
+
+    CODE = 0  # TWO_POINT
+    QTH = 1  # cube root of the static wheel load (N^(1/3))
+    N_Y = 2  # lateral nodes
+    Y0 = 3  # first lateral node (m)
+    DY = 4  # lateral step (m)
+    N_PSI = 5  # yaw nodes
+    PSI0 = 6  # first yaw node (rad)
+    DPSI = 7  # yaw step (rad)
+    DATA = 8
+
+
+class PatchColumn(IntEnum):
+    """The columns of one contact patch (a slot) of a wheel in the two-point table.
+
+    With ``Q`` the wheel's vertical load and ``W`` the patch's share of it, the patch's
+    normal force without creep forces is ``N0 = W Q / cos(delta)``; the coefficients hold
+    the powers of ``W / cos(delta)``, as :class:`PointColumn` holds those of
+    ``1 / cos(delta)``: ``c = C1 Q^(1/3)``, ``f11 = K11 Q^(2/3)``, ``f22 = K22 Q^(2/3)``,
+    ``f23 = K23 Q``, ``f33 = K33 Q^(4/3)``. A slot without a patch has ``W = 0``.
+    """
+
+    W = 0  # share of the wheel's vertical load (-)
+    R = 1  # rolling radius (m)
+    D = 2  # contact angle (rad)
+    X = 3  # lead ahead of the axle, along the track (m)
+    S = 4  # axle coordinate of the contact's section (m, + left)
+    C1 = 5  # sqrt(a b) per Q^(1/3) (m / N^(1/3))
+    K11 = 6  # f11 per Q^(2/3)
+    K22 = 7  # f22 per Q^(2/3)
+    K23 = 8  # f23 per Q (m)
+    K33 = 9  # f33 per Q^(4/3)
+    AB = 10  # the creep table's slice of this a/b (index)
+
+
+#: Number of columns of one patch.
+N_PATCH_COLUMNS = len(PatchColumn)
+
 
 class DamperParam(IntEnum):
     """Columns of the yaw damper parameter array (one row per damper)."""

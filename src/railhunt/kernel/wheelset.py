@@ -7,7 +7,8 @@ carry the static load ``N = W g / 2`` and the creep coefficients are the vehicle
 curve each wheel has its own quasi-static load ``Q`` and the coefficients follow it
 (Hertz: ``f11, f22 ~ Q^(2/3)``, ``f23 ~ Q``, ``f33 ~ Q^(4/3)``). A wheel/rail vector with
 per-point contact mechanics (:mod:`railhunt.kernel.point_contact`) takes each contact's own
-ellipse, coefficients and normal force instead.
+ellipse, coefficients and normal force instead; one with two-point contact
+(:mod:`railhunt.kernel.two_point`) up to two patches per wheel, at their own points.
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ from railhunt.kernel.contact import wheel_geometry
 from railhunt.kernel.creep import CreepLaw, heuristic_saturation, polach_saturation
 from railhunt.kernel.layout import NO_CREEP_TABLE, WR
 from railhunt.kernel.point_contact import point_wheelset_contact, uses_per_point
+from railhunt.kernel.two_point import two_point_wheelset_contact, uses_two_point
 
 
 @njit(cache=True)
@@ -68,6 +70,10 @@ def wheelset_contact(
         fy, mz, f_l, f_r, _, _ = point_wheelset_contact(y_rel, dy, psi, psi_rel, yaw_rate, v,
                                                         wr, q_left, q_right, tab)
         return fy, mz, f_l, f_r
+    if uses_two_point(wr):
+        tab = NO_CREEP_TABLE if table is None else table
+        return two_point_wheelset_contact(y_rel, dy, psi, yaw_rate, v, wr, q_left, q_right,
+                                          tab)  # fmt: skip
     a = wr[WR.A]
     r_l, r_r, d_l, d_r = wheel_geometry(y_rel, wr)
     cdl, sdl = math.cos(d_l), math.sin(d_l)

@@ -41,8 +41,9 @@ WHEEL_RAIL_NUMBERS = ("half_gauge", "radius", "f11", "f22", "f23", "f33", "mu", 
                       "d0", "d1", "d4", "d5", "delta_max", "conicity",
                       "contact_angle", "shear_modulus", "poisson")  # fmt: skip
 #: Contact mechanics: the vehicle's coefficients at the centred contact (scaled by the
-#: load in curves), or each contact point's own ellipse, coefficients and normal force.
-CONTACT_MECHANICS = ("centred", "per-point")
+#: load in curves), or each contact point's own ellipse, coefficients and normal force, or
+#: up to two patches per wheel with their own (two-point contact, over y and yaw).
+CONTACT_MECHANICS = ("centred", "per-point", "two-point")
 WHEEL_RAIL_KEYS = frozenset(WHEEL_RAIL_TEXT + WHEEL_RAIL_NUMBERS)
 #: Contact descriptions and the keys each needs.
 CONTACTS: dict[str, tuple[str, ...]] = {
@@ -103,14 +104,14 @@ def parse_layout(data: dict[str, Any], where: str) -> LayoutSpec:
             raise LayoutError(f"{where}: wheelset {ws.name!r}: contact_mechanics = "
                               f"{mechanics!r} is unknown; use one of "
                               f"{', '.join(CONTACT_MECHANICS)}")  # fmt: skip
-        if mechanics == "per-point" and contact != "profiles":
+        if mechanics in ("per-point", "two-point") and contact != "profiles":
             raise LayoutError(f"{where}: wheelset {ws.name!r}: contact_mechanics = "
-                              f"'per-point' needs contact = 'profiles' (the ellipses come "
+                              f"{mechanics!r} needs contact = 'profiles' (the ellipses come "
                               f"from the profiles' curvatures), not {contact!r}")  # fmt: skip
-        if merged.get("creep_law") == "exact-table" and mechanics != "per-point":
+        if merged.get("creep_law") == "exact-table" and mechanics == "centred":
             raise LayoutError(f"{where}: wheelset {ws.name!r}: creep_law = 'exact-table' "
-                              "needs contact_mechanics = 'per-point' (it reads each "
-                              "contact's own ellipse)")  # fmt: skip
+                              "needs contact_mechanics = 'per-point' or 'two-point' (it "
+                              "reads each contact's own ellipse)")  # fmt: skip
         if missing:
             raise LayoutError(
                 f"{where}: wheelset {ws.name!r} has no wheel/rail data for "
