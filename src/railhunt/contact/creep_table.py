@@ -102,7 +102,13 @@ def control_points(values: np.ndarray) -> np.ndarray:
     for k, parity in enumerate((-1, 1, 1)):
         c = _solve_axis(values[..., k], 1, parity)
         c = _solve_axis(c, 2, 0)
-        out.append(_solve_axis(c, 3, 0))
+        c = _solve_axis(c, 3, 0)
+        # The parity across s_x = 0 to the bit (the later solves round each slab alike
+        # only to rounding): the ghost mirrors the first inner point, D_x's node is 0.
+        c[:, 0] = parity * c[:, 2]
+        if parity < 0:
+            c[:, 1] = 0.0
+        out.append(c)
     return np.stack(out, axis=-1)
 
 

@@ -263,7 +263,7 @@ def table_creep(ux: float, uy: float, us: float, my: float, ms: float, ab_index:
         tx = -ux * inv
         ty = -uf * inv
         tm = lm * inv
-        sx = 1.0 - ip * r0 * r23
+        sx = 1.0 - ip * r0 * r23 if ux > 0.0 else 0.0  # exactly 0 at xi = 0: F_x = 0
         sy = 1.0 - ip * r01 * r3
         if uf < 0.0:
             sy = -sy
