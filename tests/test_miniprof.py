@@ -229,3 +229,55 @@ def test_critical_speeds_of_one_worn_wheel(tmp_path):
     assert 100.0 < row["linear_critical_speed_kmh"] < 300.0
     assert 100.0 < row["nonlinear_critical_speed_kmh"] < 213.0
     assert data["vehicle"].startswith("s1002_uic60_table")
+
+
+def test_a_vehicle_keeps_the_smoothing_of_its_measured_wheel(tmp_path):
+    """The smoothing given with a wheel goes into the vehicle's [contact] section: its
+    geometry reads the file with it (here 0: the raw points, whose conicity differs from
+    the smoothed ones'), and the vehicle file written and read back keeps it."""
+    from importlib import resources
+
+    from railhunt.studies.fleet import with_wheel
+
+    path = str(resources.files("railhunt") / "data" / "profiles" / "worn_hollow_2mm.whl")
+    base = railhunt.Vehicle.shipped("s1002_uic60_table")
+    raw = with_wheel(base, path, smooth=0.0)
+    default = with_wheel(base, path)
+    assert raw.contact.smooth == 0.0 and default.contact.smooth is None
+    g_raw, g_default = raw.contact.geometry(), default.contact.geometry()
+    # the raw points' contact jumps differ from the smoothed profile's somewhere along y
+    assert np.max(np.abs(g_raw.r_left - g_default.r_left)) > 1e-7
+    file = tmp_path / "raw.toml"
+    raw.to_toml(file)
+    again = railhunt.Vehicle.from_toml(file)
+    assert again.contact.smooth == 0.0
+    assert np.array_equal(again.contact.geometry().r_left, g_raw.r_left)
+
+
+@pytest.mark.parametrize("value", [-1e-5, 1e-3, float("nan"), "noisy", True])
+def test_a_contact_smoothing_out_of_range_is_refused_naming_it(value):
+    from railhunt.vehicle.contact import ContactSpec
+
+    with pytest.raises(ValueError, match=r"contact smooth = .* is invalid: must be"):
+        ContactSpec(smooth=value)
+
+
+def test_the_conicity_command_writes_the_fleet_as_csv(tmp_path):
+    import csv
+    from importlib import resources
+
+    path = resources.files("railhunt") / "data" / "profiles" / "worn_hollow_2mm.whl"
+    out = tmp_path / "fleet.csv"
+    result = run("conicity", "S1002", str(path), "--csv", str(out))
+    assert result.exit_code == 0, result.output
+    rows = list(csv.DictReader(out.open()))
+    assert [r["wheel"] for r in rows] == ["S1002", "worn_hollow_2mm.whl"]
+    # the same conicities as the JSON output (0.183 and 0.436 at 3 mm)
+    data = json.loads(run("conicity", "S1002", str(path), "--json").output)
+    for row, wheel in zip(rows, data["wheels"], strict=True):
+        assert float(row["equivalent_conicity"]) == pytest.approx(
+            wheel["equivalent_conicity"], rel=1e-5)
+        bands = [[float(v) * 1e-3 for v in pair.split(":")]
+                 for pair in row["two_point_bands_mm"].split(";")]  # fmt: skip
+        assert np.allclose(bands, wheel["two_point_bands_m"], atol=1e-7)
+    assert (tmp_path / "fleet.csv.meta.json").is_file()

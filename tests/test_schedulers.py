@@ -158,8 +158,19 @@ def test_the_api_creates_no_missing_folder(tmp_path):
     assert not (tmp_path / "no").exists()
 
 
+def _probe_one(engine, task, items, sink):
+    """Time only the first point (a probe of one)."""
+    import time
+
+    t0 = time.perf_counter()
+    sink([task(items[0])])
+    engine.seconds_per_point = time.perf_counter() - t0
+    return 1
+
+
 def test_workers_are_capped_at_the_cores(tmp_path, monkeypatch):
     import railhunt.studies.execute as execute
+    import railhunt.studies.tasks as tasks
 
     assert check_workers(1000) == default_workers()
     started: list[int] = []
@@ -172,6 +183,10 @@ def test_workers_are_capped_at_the_cores(tmp_path, monkeypatch):
         raise Started
 
     monkeypatch.setattr(execute, "local_client", fake_local_client)
+    # two cheap points would run in this process: make starting workers look free, and
+    # time only the first point, so that the second goes to the (fake) cluster
+    monkeypatch.setattr(tasks, "CLUSTER_START_S", 0.0)
+    monkeypatch.setattr(tasks.TaskEngine, "_probe", _probe_one)
     if default_workers() == 1:
         pytest.skip("one core: the points run in this process")
     result = run(*SWEEP, "--workers", "1000", "--out", str(tmp_path / "x.csv"))

@@ -22,6 +22,7 @@ Main entry points (imported lazily, so ``import railhunt`` stays fast)::
     stochastic_critical_speed        lowest speed breaking the EN 14363-style criterion
     read_profile, s1002, uic60       wheel/rail profiles (SIMPACK, text; EN 13715, 60E1)
     contact_geometry                 rigid contact: r_L, r_R, contact angles, roll vs y
+    contact_patches                  a yawed wheelset's contact patches (two-point, lead)
     equivalent_conicity              EN 15302 equivalent conicity of a Delta r table
     creep_coefficients               Hertz ellipse + Kalker's f11, f22, f23, f33
     creep_forces                     creep forces and spin moment of a patch (FASTSIM, exact, ...)
@@ -77,6 +78,9 @@ _EXPORTS = {
     "equivalent_conicity_regression": "railhunt.contact.conicity",
     "contact_geometry": "railhunt.contact.geometry",
     "ContactGeometry": "railhunt.contact.geometry",
+    "contact_patches": "railhunt.contact.patches",
+    "ContactPatch": "railhunt.contact.patches",
+    "WheelsetContact": "railhunt.contact.patches",
     "Profile": "railhunt.contact.profiles",
     "read_profile": "railhunt.contact.profiles",
     "s1002": "railhunt.contact.profiles",
@@ -127,6 +131,11 @@ if TYPE_CHECKING:
     from railhunt.contact.geometry import (
         ContactGeometry as ContactGeometry,
         contact_geometry as contact_geometry,
+    )
+    from railhunt.contact.patches import (
+        ContactPatch as ContactPatch,
+        WheelsetContact as WheelsetContact,
+        contact_patches as contact_patches,
     )
     from railhunt.mechanics.coefficients import kalker_coefficients as kalker_coefficients
     from railhunt.mechanics.hertz import (

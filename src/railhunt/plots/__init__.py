@@ -29,6 +29,7 @@ from railhunt.plots.curves import (
     stability_map_figure,
 )
 from railhunt.plots.figure import PHASE_FROM, new_figure, save_figure
+from railhunt.plots.patches import contact_patches_figure, plot_contact_patches
 from railhunt.plots.spectrogram import plot_spectrogram, spectrogram_figure
 from railhunt.plots.stability import (
     WHEELSET_CHOICES,
@@ -59,6 +60,7 @@ __all__ = [
     "bifurcation_figure",
     "conicity_histogram_figure",
     "contact_geometry_figure",
+    "contact_patches_figure",
     "creep_figure",
     "curve_entry_figure",
     "damper_histories_figure",
@@ -68,6 +70,7 @@ __all__ = [
     "plot_bifurcation_family",
     "plot_conicity_histogram",
     "plot_contact_geometry",
+    "plot_contact_patches",
     "plot_creep_curves",
     "plot_curve_entry",
     "plot_damper_histories",

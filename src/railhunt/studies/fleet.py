@@ -79,8 +79,8 @@ def load_wheel(spec: str, smooth: float | str | None = None, repair: bool = Fals
 
 def with_wheel(vehicle: Vehicle, wheel: str, *, rail: str | None = None,
                rail_inclination: float | None = None, gauge: float | None = None,
-               back_to_back: float | None = None,
-               wheel_radius: float | None = None) -> Vehicle:  # fmt: skip
+               back_to_back: float | None = None, wheel_radius: float | None = None,
+               smooth: float | str | None = None) -> Vehicle:  # fmt: skip
     """The vehicle with its wheel profile replaced (and, if given, its rail and track).
 
     The vehicle must run on profiles (a ``[contact]`` section; ``wheel`` and ``rail`` are
@@ -104,6 +104,7 @@ def with_wheel(vehicle: Vehicle, wheel: str, *, rail: str | None = None,
         gauge=old.gauge if gauge is None else gauge,
         back_to_back=old.back_to_back if back_to_back is None else back_to_back,
         wheel_radius=old.wheel_radius if wheel_radius is None else wheel_radius,
+        smooth=old.smooth if smooth is None else smooth,
     )
     geo = spec.geometry()
     r_centre = float(np.interp(0.0, geo.y, geo.r_left))
@@ -118,9 +119,9 @@ def with_wheel(vehicle: Vehicle, wheel: str, *, rail: str | None = None,
 def _centred_coefficients(spec: ContactSpec, geo: object, normal_load: float) -> dict:
     """Kalker's ``f11, f22, f23, f33`` (N) at the centred contact point of ``spec``."""
     wheel = (s1002() if spec.wheel.upper() == "S1002"
-             else read_profile(spec.wheel, "wheel"))  # fmt: skip
+             else read_profile(spec.wheel, "wheel", smooth=spec.smooth))  # fmt: skip
     rail = (uic60() if spec.rail.upper() in ("UIC60", "60E1")
-            else read_profile(spec.rail, "rail"))  # fmt: skip
+            else read_profile(spec.rail, "rail", smooth=spec.smooth))  # fmt: skip
     rail_c = rail.inclined(spec.rail_inclination) if spec.rail_inclination else rail
     i0 = int(np.argmin(np.abs(geo.y)))
     k_wheel = -transverse_curvature(wheel.y, wheel.z, float(geo.wheel_left[i0]))
@@ -204,7 +205,8 @@ def wheel_fleet(
             path = "S1002" if spec.upper() == "S1002" else str(Path(spec).resolve())
             rail_spec = "UIC60" if rail.upper() in ("UIC60", "60E1") else str(Path(rail).resolve())
             on = with_wheel(vehicle, path, rail=rail_spec, rail_inclination=rail_inclination,
-                            gauge=gauge, back_to_back=back_to_back, wheel_radius=r0)
+                            gauge=gauge, back_to_back=back_to_back, wheel_radius=r0,
+                            smooth=smooth)  # fmt: skip
             lin = linear_critical_speed(on)
             row.linear_kmh = float(lin.speed_kmh)
             row.frequency_hz = float(lin.frequency_hz)

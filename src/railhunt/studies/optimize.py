@@ -1,9 +1,10 @@
 """The best compromise: a Pareto front of objectives by NSGA-II, on the study machinery.
 
 :func:`optimize` runs pymoo's NSGA-II through its ask/tell interface: each generation's
-designs are asked for, evaluated as one batch of points on
-:func:`railhunt.studies.runner.run_study` (Dask or this process, each point written to the
-results file as it finishes) and told back. The algorithm's random generator is seeded,
+designs are asked for, evaluated as one batch of points on one
+:class:`railhunt.studies.runner.StudyRun` for the whole run (one results file, one cluster
+or this process; the points grouped into tasks by their measured cost, each task's rows
+written as it finishes) and told back. The algorithm's random generator is seeded,
 and its decisions depend only on the objectives it is told, so a run resumed with the same
 seed asks for the same designs: the points already in the file are read back (exactly:
 floats are written with ``repr``) instead of computed, and the run reaches the same front.
@@ -18,6 +19,7 @@ from __future__ import annotations
 
 import math
 import re
+import time
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -26,11 +28,12 @@ import numpy as np
 
 from railhunt.studies.design import Point, parse_ties, tied_values
 from railhunt.studies.evaluation import Evaluation
-from railhunt.studies.execute import CONNECT_TIMEOUT, check_connect_timeout, check_workers
+from railhunt.studies.execute import CONNECT_TIMEOUT
 from railhunt.studies.factors import check_model, parse_factors
+from railhunt.studies.options import StudyOptions, resolve_run
 from railhunt.studies.outputs import OutputOptions, options_from
 from railhunt.studies.pareto_result import ParetoResult, hypervolumes, non_dominated
-from railhunt.studies.runner import run_study
+from railhunt.studies.runner import StudyRun
 from railhunt.studies.sensitivity import capped_value
 from railhunt.vehicle import Vehicle
 
@@ -128,6 +131,8 @@ def optimize(
     output_options: OutputOptions | Mapping[str, Any] | None = None,
     excitation: object = None,
     creep_law: str | None = None,
+    wait_for_workers: bool | float = False,
+    run: StudyOptions | None = None,
 ) -> ParetoResult:
     """Pareto front of ``objectives`` over the ``factors`` by NSGA-II (pymoo).
 
@@ -150,8 +155,17 @@ def optimize(
         Seed of NSGA-II's generator: the same seed gives the same designs and front.
     ties, out, resume, overwrite, client, scheduler, workers, progress, connect_timeout
         As in :func:`railhunt.sensitivity`.
-    output_options, excitation, creep_law : optional
+    output_options, excitation, creep_law, wait_for_workers : optional
         As in :func:`railhunt.sensitivity`.
+    run : StudyOptions, optional
+        How the study runs, in one object (:class:`railhunt.StudyOptions`), instead of
+        ``out`` ... ``wait_for_workers`` (giving both is an error naming the keyword).
+
+    Every generation's designs are evaluated as one batch on one results file and one
+    cluster (or in this process) for the whole run. The result's ``timings`` (and the
+    ``timings`` of the results file's description) give the time spent in pymoo (asking
+    for and being told a generation's designs), in the evaluations (in this process) and
+    in railhunt's machinery around them, in s.
 
     Returns
     -------
@@ -174,9 +188,11 @@ def optimize(
         if isinstance(value, bool) or int(value) != value or not low <= value <= 100000:
             raise ValueError(f"{name} = {value!r} is invalid: must be an integer in "
                              f"[{low}, 100000]")  # fmt: skip
-    if client is None and scheduler is None:
-        check_workers(workers)
-    check_connect_timeout(connect_timeout)
+    options_run = resolve_run(run, out=out, resume=resume, overwrite=overwrite, client=client,
+                              scheduler=scheduler, workers=workers, progress=progress,
+                              connect_timeout=connect_timeout,
+                              wait_for_workers=wait_for_workers)  # fmt: skip
+    out_path = options_run.out
     facs = parse_factors(model, factors, allow_normal=False)
     names = [f.name for f in facs]
     tie_map = parse_ties(ties, model.parameters) if isinstance(model, Vehicle) else {}
@@ -207,64 +223,66 @@ def optimize(
                     verbose=False)  # fmt: skip
     rows: dict[int, dict[str, Any]] = {}
     designs: list[tuple[int, int]] = []  # (point, generation)
-    next_point = 0
-    start = None
-    first = True
-    done_points = 0
     total_points = int(population) * int(generations) + (nominal is not None)
-
-    def run(points: list[Point], label: str) -> None:
-        nonlocal first, done_points
-        evaluation.check(points)
-        bar: bool | Callable[[int, int], None] = progress
-
-        if callable(progress):
-            base = done_points
-
-            def bar(done: int, total: int) -> None:
-                # With a file, ``done`` counts every row it holds (earlier generations too).
-                progress(min(done if out else base + done, total_points), total_points)
-
-        study = run_study(evaluation.items(points), evaluation.task, meta, label=label, out=out,
-                          resume=resume or not first, overwrite=overwrite and first,
-                          client=client, scheduler=scheduler, workers=workers, progress=bar,
-                          warm_up=evaluation.warm_up, connect_timeout=connect_timeout)  # fmt: skip
-        first = False
-        wanted = {p.index: p for p in points}
-        for row in study.rows:
-            p = wanted.get(row["point"])
-            if p is None:
-                continue
-            if any(float(row[k]) != v for k, v in p.values.items()):
-                raise ValueError(f"{out}: point {p.index} holds other parameter values than "
-                                 "this run asks for: another optimisation wrote it")
-            rows[p.index] = row
-        done_points += len(points)
-
-    if nominal is not None:
-        p0 = Point(0, "start", tied_values({n: float(nominal[n]) for n in names}, tie_map))
-        run([p0], "start")
-        start = rows.get(0)
-        next_point = 1
+    timings = {"pymoo_s": 0.0, "evaluations_s": 0.0, "study_s": 0.0}
     history: list[list[int]] = []
-    for gen in range(int(generations)):
-        pop = algorithm.ask()
-        x = pop.get("X")
-        points = [Point(next_point + i, f"generation {gen}",
-                        tied_values({n: float(v) for n, v in zip(names, xi, strict=True)}, tie_map))
-                  for i, xi in enumerate(x)]  # fmt: skip
-        next_point += len(points)
-        run(points, f"generation {gen + 1}/{generations}")
-        f = np.empty((len(points), len(objs)))
-        g = np.empty((len(points), len(cons)))
-        for i, p in enumerate(points):
-            f[i], g[i], _ = objectives_of(rows.get(p.index), objs, cons)
-            designs.append((p.index, gen))
-        static = StaticProblem(problem, F=f, G=g) if cons else StaticProblem(problem, F=f)
-        Evaluator().eval(static, pop)
-        algorithm.tell(infills=pop)
-        history.append([p.index for p in points])
-    return _result(rows, designs, history, start, names, param_cols, objs, cons, meta, out)
+    start = None
+    began = time.perf_counter()
+    with StudyRun(meta, options_run, label="optimize", total=total_points,
+                  warm_up=evaluation.warm_up) as study:  # fmt: skip
+
+        def run(points: list[Point], label: str) -> None:
+            evaluation.check(points)
+            study.label(label)
+            study.run(evaluation.items(points), evaluation.task)
+            for p in points:
+                row = study.rows.get(p.index)
+                if row is None:
+                    continue
+                if any(float(row[k]) != v for k, v in p.values.items()):
+                    raise ValueError(f"{out_path}: point {p.index} holds other parameter "
+                                     "values than this run asks for: another optimisation "
+                                     "wrote it")  # fmt: skip
+                rows[p.index] = row
+
+        next_point = 0
+        if nominal is not None:
+            p0 = Point(0, "start", tied_values({n: float(nominal[n]) for n in names}, tie_map))
+            run([p0], "start")
+            start = rows.get(0)
+            next_point = 1
+        for gen in range(int(generations)):
+            t0 = time.perf_counter()
+            pop = algorithm.ask()
+            x = pop.get("X")
+            timings["pymoo_s"] += time.perf_counter() - t0
+            points = [Point(next_point + i, f"generation {gen}",
+                            tied_values(dict(zip(names, map(float, xi), strict=True)),
+                                        tie_map))
+                      for i, xi in enumerate(x)]  # fmt: skip
+            next_point += len(points)
+            run(points, f"generation {gen + 1}/{generations}")
+            f = np.empty((len(points), len(objs)))
+            g = np.empty((len(points), len(cons)))
+            for i, p in enumerate(points):
+                f[i], g[i], _ = objectives_of(rows.get(p.index), objs, cons)
+                designs.append((p.index, gen))
+            t0 = time.perf_counter()
+            static = StaticProblem(problem, F=f, G=g) if cons else StaticProblem(problem, F=f)
+            Evaluator().eval(static, pop)
+            algorithm.tell(infills=pop)
+            timings["pymoo_s"] += time.perf_counter() - t0
+            history.append([p.index for p in points])
+        study.complete = not study.lost and all(p in study.rows for p in range(total_points))
+        timings["evaluations_s"] = study.engine.evaluation_s
+        timings["study_s"] = time.perf_counter() - began
+        timings["railhunt_s"] = max(0.0, timings["study_s"] - timings["pymoo_s"]
+                                    - timings["evaluations_s"])  # fmt: skip
+        if study.store is not None:
+            study.store.note(timings=timings)
+    result = _result(rows, designs, history, start, names, param_cols, objs, cons, meta, out_path)
+    result.timings = timings
+    return result
 
 
 def _result(rows: dict[int, dict[str, Any]], designs: list[tuple[int, int]],

@@ -14,15 +14,21 @@ from railhunt.results import Columns, ResultDisplay, Row
 
 def non_dominated(f: np.ndarray, feasible: np.ndarray) -> np.ndarray:
     """Indices of the feasible rows of ``f`` (minimised objectives) that no other feasible
-    row dominates, in row order; duplicates of a front design are kept once."""
+    row dominates, in row order; duplicates of a front design are kept once (the first)."""
     idx = np.flatnonzero(feasible)
-    keep = []
-    for i in idx:
-        others = f[idx]
-        dominated = np.any(np.all(others <= f[i], axis=1) & np.any(others < f[i], axis=1))
-        if not dominated and not any(np.array_equal(f[i], f[k]) for k in keep):
-            keep.append(i)
-    return np.array(keep, dtype=int)
+    if idx.size == 0:
+        return np.array([], dtype=int)
+    fo = f[idx]
+    dominated = np.zeros(idx.size, dtype=bool)
+    block = 256
+    for start in range(0, idx.size, block):
+        mine = fo[start:start + block, None, :]  # (b, 1, k) against every row (1, m, k)
+        no_worse = np.all(fo[None, :, :] <= mine, axis=2)
+        better = np.any(fo[None, :, :] < mine, axis=2)
+        dominated[start:start + block] = np.any(no_worse & better, axis=1)
+    kept = idx[~dominated]
+    _, first = np.unique(f[kept], axis=0, return_index=True)
+    return kept[np.sort(first)]
 
 
 def hypervolumes(f: np.ndarray, feasible: np.ndarray, generation: np.ndarray,
@@ -31,7 +37,9 @@ def hypervolumes(f: np.ndarray, feasible: np.ndarray, generation: np.ndarray,
 
     Objectives are normalised by the range of the feasible designs of the whole run, and
     the reference point is 1.1 in each (10 % beyond the worst feasible value), so the
-    numbers of one run compare with each other: 0 with no feasible design yet.
+    numbers of one run compare with each other: 0 with no feasible design yet. The front
+    after a generation is the non-dominated set of the previous front and that
+    generation's designs (the same set as of all designs so far).
     """
     from pymoo.indicators.hv import HV
 
@@ -42,13 +50,16 @@ def hypervolumes(f: np.ndarray, feasible: np.ndarray, generation: np.ndarray,
     span = np.where(hi > lo, hi - lo, 1.0)
     indicator = HV(ref_point=np.full(f.shape[1], 1.1))
     out = []
+    front_idx = np.array([], dtype=int)
     for gen in range(generations):
-        mask = feasible & (generation <= gen)
+        mask = np.zeros(len(f), dtype=bool)
+        mask[front_idx] = True
+        mask |= feasible & (generation == gen)
         if not np.any(mask):
             out.append(0.0)
             continue
-        front = f[non_dominated(f, mask)]
-        out.append(float(indicator((front - lo) / span)))
+        front_idx = non_dominated(f, mask)
+        out.append(float(indicator((f[front_idx] - lo) / span)))
     return out
 
 
@@ -80,6 +91,11 @@ class ParetoResult(ResultDisplay):
         The study description (the results file's sidecar).
     path : Path, optional
         The results file.
+    timings : dict
+        Where the run's wall time went (s): ``pymoo_s`` (NSGA-II asking for and told the
+        designs), ``evaluations_s`` (the points evaluated in this process),
+        ``railhunt_s`` (the rest: the study machinery, and the wait for workers) and
+        ``study_s`` (the whole run).
     """
 
     factors: list[str]
@@ -92,6 +108,7 @@ class ParetoResult(ResultDisplay):
     start: dict[str, float] | None = None
     meta: dict[str, Any] = field(default_factory=dict, repr=False)
     path: Path | None = None
+    timings: dict[str, float] = field(default_factory=dict, repr=False)
 
     def _summary(self) -> list[Row]:
         rows: list[Row] = [("factors", ", ".join(self.factors), ""),

@@ -36,8 +36,9 @@ import numpy as np
 
 from railhunt.studies.design import Point, parse_ties, tied_values
 from railhunt.studies.evaluation import Evaluation
-from railhunt.studies.execute import CONNECT_TIMEOUT, check_connect_timeout, check_workers
+from railhunt.studies.execute import CONNECT_TIMEOUT
 from railhunt.studies.factors import Factor, check_model, parse_factors
+from railhunt.studies.options import StudyOptions, resolve_run
 from railhunt.studies.outputs import OutputOptions, options_from
 from railhunt.studies.runner import run_study
 from railhunt.studies.sensitivity_result import SensitivityResult
@@ -190,6 +191,8 @@ def sensitivity(
     frequency_speed_kmh: float | None = None,
     excitation: object = None,
     creep_law: str | None = None,
+    wait_for_workers: bool | float = False,
+    run: StudyOptions | None = None,
 ) -> SensitivityResult:
     """Sobol' or Morris sensitivity indices of a model's outputs to its factors.
 
@@ -227,6 +230,11 @@ def sensitivity(
         The curve of the curving outputs, the speed range of ``least_damping_ratio``.
     frequency_speed_kmh, excitation, creep_law : optional
         As in :func:`railhunt.sweep` (vehicle models only).
+    wait_for_workers : bool or float
+        As in :func:`railhunt.sweep`.
+    run : StudyOptions, optional
+        How the study runs, in one object (:class:`railhunt.StudyOptions`), instead of
+        ``out`` ... ``wait_for_workers`` (giving both is an error naming the keyword).
 
     Returns
     -------
@@ -236,9 +244,10 @@ def sensitivity(
     if method not in METHODS:
         raise ValueError(f"method = {method!r} is invalid: must be one of {', '.join(METHODS)}")
     samples = check_samples(method, samples)
-    if client is None and scheduler is None:
-        check_workers(workers)
-    check_connect_timeout(connect_timeout)
+    options_run = resolve_run(run, out=out, resume=resume, overwrite=overwrite, client=client,
+                              scheduler=scheduler, workers=workers, progress=progress,
+                              connect_timeout=connect_timeout,
+                              wait_for_workers=wait_for_workers)  # fmt: skip
     outputs = tuple(outputs)
     if not outputs or isinstance(outputs[0], (list, tuple)):
         raise ValueError(f"outputs = {list(outputs)!r} is invalid: give one or more names")
@@ -273,9 +282,7 @@ def sensitivity(
     meta.update(evaluation.meta)
     items = evaluation.items(points)
     task, warm = evaluation.task, evaluation.warm_up
-    study = run_study(items, task, meta, label=method, out=out, resume=resume,
-                      overwrite=overwrite, client=client, scheduler=scheduler, workers=workers,
-                      progress=progress, warm_up=warm, connect_timeout=connect_timeout)  # fmt: skip
+    study = run_study(items, task, meta, label=method, run=options_run, warm_up=warm)
     return analyse_study(study, method, facs, x, outputs, seed, num_resamples, conf_level)
 
 

@@ -16,7 +16,8 @@ from pathlib import Path
 from typing import Any
 
 from railhunt.curve import Curve, fixed_deficiency
-from railhunt.studies.execute import CONNECT_TIMEOUT, check_connect_timeout, check_workers
+from railhunt.studies.execute import CONNECT_TIMEOUT
+from railhunt.studies.options import StudyOptions, resolve_run
 from railhunt.studies.runner import run_study
 from railhunt.studies.store import (
     STATUS_FAILED,
@@ -160,6 +161,7 @@ def stability_map(
     progress: bool | Callable[[int, int], None] = False,
     connect_timeout: float = CONNECT_TIMEOUT,
     wait_for_workers: bool | float = False,
+    run: StudyOptions | None = None,
 ) -> SweepResults:
     """Linear and nonlinear critical speed of a vehicle in curves of several radii.
 
@@ -190,6 +192,9 @@ def stability_map(
         As for :func:`railhunt.sweep`: how long to try to reach ``scheduler`` (s).
     wait_for_workers : bool or float
         As for :func:`railhunt.sweep`: wait for the scheduler's first worker.
+    run : StudyOptions, optional
+        How the study runs, in one object (:class:`railhunt.StudyOptions`), instead of
+        ``out`` ... ``wait_for_workers``.
 
     Returns
     -------
@@ -209,9 +214,10 @@ def stability_map(
         Curve(1000.0, cant, direction=direction)  # validate cant and direction
     else:
         fixed_deficiency(1000.0, cant_deficiency, direction)
-    if client is None and scheduler is None:
-        check_workers(workers)
-    check_connect_timeout(connect_timeout)
+    options_run = resolve_run(run, out=out, resume=resume, overwrite=overwrite, client=client,
+                              scheduler=scheduler, workers=workers, progress=progress,
+                              connect_timeout=connect_timeout,
+                              wait_for_workers=wait_for_workers)  # fmt: skip
     if excitation is None:
         excitation = SingleDefect()
     param_cols = ["radius_m", "cant_m" if cant_deficiency is None else "cant_deficiency_m"]
@@ -222,10 +228,7 @@ def stability_map(
                              outputs=outputs, excitation=excitation,
                              creep_law=creep_law)  # fmt: skip
     return run_study([(i, (i, r)) for i, r in enumerate(radii)], task, meta,
-                     label="stability map", out=out, resume=resume, overwrite=overwrite,
-                     client=client, scheduler=scheduler, workers=workers, progress=progress,
-                     warm_up=_warm_up, connect_timeout=connect_timeout,
-                     wait_for_workers=wait_for_workers)  # fmt: skip
+                     label="stability map", run=options_run, warm_up=_warm_up)
 
 
 def _describe(vehicle: Vehicle, radii: list[float], cant: float,

@@ -1,10 +1,11 @@
-"""Result files of parameter studies: written point by point, resumable, readable.
+"""Result files of parameter studies: written task by task, resumable, readable.
 
-A study's rows are appended to a CSV file as each point finishes (flushed and synced, so a
-killed process loses at most the point in flight). Beside it, ``<file>.sweep.json``
-describes the study (vehicle, design, outputs, options and a fingerprint of all of them);
-``resume`` checks the fingerprint, drops a torn last line, and reports which points are
-done, so that only missing points are computed and none is written twice. When the study
+A study's rows are appended to a CSV file as each task finishes (a task's points at once,
+flushed and synced, so a killed process loses at most the task in flight). Beside it,
+``<file>.sweep.json`` describes the study (vehicle, design, outputs, options and a
+fingerprint of all of them); ``resume`` checks the fingerprint, drops a torn last line,
+and reports which points are done, so that only missing points are computed and none is
+written twice. When the study
 finishes the file is rewritten sorted by point, so identical inputs give identical files.
 
 For a ``.parquet`` file (needs pyarrow) the rows are journalled in ``<file>.journal.csv``;
@@ -77,8 +78,9 @@ def columns_for(parameters: Sequence[str], outputs: Sequence[str]) -> list[str]:
 
 
 #: Keys of a study description that do not decide whether a file resumes: the fingerprint
-#: itself, and the provenance (the vehicle's name, which does not change the numbers).
-UNFINGERPRINTED = frozenset({"fingerprint", "provenance"})
+#: itself, the provenance (the vehicle's name, which does not change the numbers) and the
+#: timings of the last run (:meth:`ResultStore.note`).
+UNFINGERPRINTED = frozenset({"fingerprint", "provenance", "timings"})
 
 
 def column_unit(name: str) -> str:
@@ -124,6 +126,13 @@ def fingerprint(meta: Mapping[str, Any]) -> str:
 
 
 def _cell(value: object) -> str:
+    kind = type(value)
+    if kind is float:  # the common cases first, by exact type
+        return "nan" if value != value else repr(value)
+    if kind is str:
+        return " ".join(value.split())  # type: ignore[union-attr]
+    if kind is int:
+        return str(value)
     if isinstance(value, numbers.Integral) and not isinstance(value, bool):
         return str(int(value))
     if isinstance(value, numbers.Real) and not isinstance(value, bool):
@@ -480,6 +489,33 @@ class ResultStore:
         self._writer.writerow([_cell(row.get(c)) for c in self.columns])
         self._sync()
         self.rows[point] = dict(row)
+        if self.parquet and time.monotonic() - self._parquet_written > PARQUET_INTERVAL_S:
+            self._write_parquet()
+
+    def note(self, **entries: Any) -> None:
+        """Add ``entries`` (not fingerprinted: e.g. ``timings``) to the study description
+        file ``<file>.sweep.json``."""
+        for key in entries:
+            if key not in UNFINGERPRINTED:
+                raise ValueError(f"{key!r} would change the study's fingerprint: only "
+                                 f"{', '.join(sorted(UNFINGERPRINTED))} can be noted")
+        self.meta.update(entries)
+        _write_atomic(self.side, json.dumps(self.meta, indent=1) + "\n")
+
+    def write_many(self, rows: Iterable[Mapping[str, Any]]) -> None:
+        """Append a task's finished points at once: one write and one ``fsync`` (points
+        already in the file are ignored)."""
+        fresh: dict[int, dict[str, Any]] = {}
+        for row in rows:
+            point = int(row["point"])
+            if point not in self.rows and point not in fresh:
+                fresh[point] = dict(row)
+        if not fresh:
+            return
+        self._writer.writerows([_cell(row.get(c)) for c in self.columns]
+                               for row in fresh.values())  # fmt: skip
+        self._sync()
+        self.rows.update(fresh)
         if self.parquet and time.monotonic() - self._parquet_written > PARQUET_INTERVAL_S:
             self._write_parquet()
 

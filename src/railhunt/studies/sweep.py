@@ -18,7 +18,8 @@ from typing import Any
 import numpy as np
 
 from railhunt.studies.design import Point, build_design, frequency_speed, parse_ties
-from railhunt.studies.execute import CONNECT_TIMEOUT, check_connect_timeout, check_workers
+from railhunt.studies.execute import CONNECT_TIMEOUT
+from railhunt.studies.options import StudyOptions, resolve_run
 from railhunt.studies.outputs import (
     NEW_OUTPUT_COLUMNS,
     OutputOptions,
@@ -215,6 +216,7 @@ def sweep(
     connect_timeout: float = CONNECT_TIMEOUT,
     wait_for_workers: bool | float = False,
     output_options: OutputOptions | Mapping[str, Any] | None = None,
+    run: StudyOptions | None = None,
 ) -> SweepResults:
     """Run a parameter study: critical speeds and hunting frequency at every point.
 
@@ -279,6 +281,9 @@ def sweep(
     output_options : OutputOptions or Mapping, optional
         The curve of the ``curving`` outputs, the speed range of ``least_damping_ratio``
         (:class:`railhunt.studies.outputs.OutputOptions`).
+    run : StudyOptions, optional
+        How the study runs, in one object (:class:`railhunt.StudyOptions`): instead of
+        ``out`` ... ``wait_for_workers`` (giving both is an error naming the keyword).
 
     Returns
     -------
@@ -296,9 +301,10 @@ def sweep(
                                                 and 0 < frequency_speed_kmh <= 1000):  # fmt: skip
         raise ValueError(f"frequency_speed_kmh = {frequency_speed_kmh!r} km/h is invalid: must "
                          "be in (0, 1000] km/h")  # fmt: skip
-    if client is None and scheduler is None:
-        check_workers(workers)
-    check_connect_timeout(connect_timeout)
+    options_run = resolve_run(run, out=out, resume=resume, overwrite=overwrite, client=client,
+                              scheduler=scheduler, workers=workers, progress=progress,
+                              connect_timeout=connect_timeout,
+                              wait_for_workers=wait_for_workers)  # fmt: skip
     if frequency_amplitude is not None and not (math.isfinite(frequency_amplitude)
                                                 and 0 < frequency_amplitude <= 0.02):  # fmt: skip
         raise ValueError(f"frequency_amplitude = {frequency_amplitude!r} m is invalid: must be "
@@ -320,10 +326,7 @@ def sweep(
                              excitation=excitation, creep_law=creep_law,
                              amplitude=frequency_amplitude, output_options=options)  # fmt: skip
     return run_study([(p.index, (p, speeds[p.index])) for p in points], task, meta,
-                     label="sweep", out=out, resume=resume, overwrite=overwrite, client=client,
-                     scheduler=scheduler, workers=workers, progress=progress,
-                     warm_up=warm_up, connect_timeout=connect_timeout,
-                     wait_for_workers=wait_for_workers)  # fmt: skip
+                     label="sweep", run=options_run, warm_up=warm_up)
 
 
 def _describe(vehicle: Vehicle, parameters: Mapping[str, object], outputs: tuple[str, ...],

@@ -36,6 +36,11 @@ class ContactSpec:
         Wheel radius at the tape circle (m), in [0.2, 0.8].
     y_max, y_step : float
         Half-range (m, in [0.005, 0.02]) and step (m, in [1e-5, 5e-4]) of the table.
+    smooth : float, "auto" or None
+        Smoothing of measured (MiniProf) profile files as :func:`railhunt.read_profile`
+        takes it: the RMS residual (m, in [0, 2e-4]; 0 keeps the points), ``"auto"`` (the
+        points' own noise) or None (each format's default: ``"auto"`` for MiniProf, none
+        for SIMPACK and text files). Only profile files read it.
     """
 
     wheel: str = "S1002"
@@ -46,6 +51,7 @@ class ContactSpec:
     wheel_radius: float = 0.43
     y_max: float = 0.012
     y_step: float = 1e-4
+    smooth: float | str | None = None
 
     _RANGES = {"rail_inclination": (0.0, 0.1, ""), "gauge": (1.3, 1.8, "m"),
                "back_to_back": (1.2, 1.75, "m"), "wheel_radius": (0.2, 0.8, "m"),
@@ -68,6 +74,16 @@ class ContactSpec:
         if self.gauge <= self.back_to_back:
             raise ValueError(f"contact gauge = {self.gauge} m is invalid: must exceed "
                              f"back_to_back = {self.back_to_back} m")  # fmt: skip
+        smooth = self.smooth
+        if isinstance(smooth, str) and smooth.strip().lower() == "auto":
+            object.__setattr__(self, "smooth", "auto")
+        elif smooth is not None:
+            if isinstance(smooth, bool) or not isinstance(smooth, numbers.Real) or not (
+                math.isfinite(smooth) and 0.0 <= smooth <= 2e-4
+            ):
+                raise ValueError(f"contact smooth = {smooth!r} is invalid: must be \"auto\" "
+                                 "or a tolerance in [0, 0.0002] m")  # fmt: skip
+            object.__setattr__(self, "smooth", float(smooth))
 
     def geometry(self) -> Any:
         """The rigid contact geometry of these profiles (computed once, then cached)."""
@@ -79,6 +95,10 @@ class ContactSpec:
                  f"rail = {toml_string(self.rail)}"]  # fmt: skip
         for key in self._RANGES:
             lines.append(f"{key} = {getattr(self, key)!r}")
+        if self.smooth is not None:
+            value = self.smooth
+            text = toml_string(value) if isinstance(value, str) else repr(value)
+            lines.append(f"smooth = {text}")
         return lines
 
 
@@ -87,8 +107,10 @@ def _contact_geometry(spec: ContactSpec) -> Any:
     from railhunt.contact.geometry import contact_geometry
     from railhunt.contact.profiles import read_profile, s1002, uic60
 
-    wheel = s1002() if spec.wheel.upper() == "S1002" else read_profile(spec.wheel, "wheel")
-    rail = uic60() if spec.rail.upper() in ("UIC60", "60E1") else read_profile(spec.rail, "rail")
+    wheel = (s1002() if spec.wheel.upper() == "S1002"
+             else read_profile(spec.wheel, "wheel", smooth=spec.smooth))  # fmt: skip
+    rail = (uic60() if spec.rail.upper() in ("UIC60", "60E1")
+            else read_profile(spec.rail, "rail", smooth=spec.smooth))  # fmt: skip
     return contact_geometry(wheel, rail, rail_inclination=spec.rail_inclination,
                             gauge=spec.gauge, back_to_back=spec.back_to_back,
                             r0=spec.wheel_radius, y_max=spec.y_max,

@@ -51,7 +51,7 @@ _RULE_KEYS = frozenset({"rule", "min", "max", "above", "below", "reason", "defau
 _VEHICLE_KEYS = frozenset({"name", "description", "base", "gravity", "source"})
 _LAYOUT_SECTIONS = frozenset({"body", "element", "wheel_rail"})
 _CONTACT_KEYS = frozenset({"wheel", "rail", "rail_inclination", "gauge", "back_to_back",
-                           "wheel_radius", "y_max", "y_step"})  # fmt: skip
+                           "wheel_radius", "y_max", "y_step", "smooth"})  # fmt: skip
 
 
 # --------------------------------------------------------------------------- shipped data

@@ -37,6 +37,33 @@ def _smooth(ctx: click.Context, param: click.Parameter, value: str) -> float | s
     return mm * 1e-3
 
 
+def _write_csv(path: Path, rows: list, critical: bool, vehicle: object) -> None:
+    """The fleet's table as CSV (mm, km/h, Hz), its metadata beside it; the two-point
+    bands as ``low:high`` pairs of lateral displacement (mm) separated by ``;``."""
+    import csv
+
+    from railhunt.cli.files import write_sidecar
+    from railhunt.cli.output import command_record
+
+    head = ["wheel", "file", "equivalent_conicity", "two_point_bands_mm",
+            "centred_rolling_radius_mm", "smoothing_mm"]  # fmt: skip
+    if critical:
+        head += ["linear_critical_speed_kmh", "nonlinear_critical_speed_kmh", "frequency_hz"]
+    with open(path, "w", newline="") as f:
+        out = csv.writer(f)
+        out.writerow(head)
+        for r in rows:
+            bands = ";".join(f"{lo * 1e3:.4g}:{hi * 1e3:.4g}" for lo, hi in r.bands)
+            cells = [r.name, r.source, f"{r.conicity:.6g}", bands,
+                     f"{r.centred_radius * 1e3:.6f}", f"{r.smoothing * 1e3:.6g}"]  # fmt: skip
+            if critical:
+                cells += [f"{r.linear_kmh:.6g}", f"{r.nonlinear_kmh:.6g}",
+                          f"{r.frequency_hz:.6g}"]  # fmt: skip
+            out.writerow(cells)
+    write_sidecar(path, traced({"rows": len(rows)}, vehicle if critical else None),
+                  **command_record())  # fmt: skip
+
+
 class FleetVehicleOption(VehicleOption):
     """``--vehicle`` of the fleet: the vehicle whose wheel profile each file replaces."""
 
@@ -112,13 +139,15 @@ def _bands_mm(bands: list) -> str:
               cls=FleetVehicleOption)
 @click.option("--png", "png_file", type=OutputPath(),
               help="Histogram of the fleet's equivalent conicities.")
+@click.option("--csv", "csv_file", type=OutputPath(),
+              help="Write the fleet's table (one row per wheel; mm, km/h, Hz).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (SI units).")
 @overwrite_option
 def conicity_command(
     wheels: tuple[str, ...], rail: str, inclination: float, gauge: float,
     back_to_back: float, r0: float, amplitude: float, penetration: float,
     smooth: float | str | None, repair: bool, critical: bool, vehicle: str,
-    png_file: Path | None, as_json: bool, overwrite: bool,
+    png_file: Path | None, csv_file: Path | None, as_json: bool, overwrite: bool,
 ) -> None:
     """Equivalent conicity of each wheel profile of a fleet, before reprofiling.
 
@@ -135,10 +164,11 @@ def conicity_command(
       railhunt conicity S1002 examples/data/worn_hollow_1mm.whl examples/data/worn_hollow_2mm.whl
       railhunt conicity WHEEL_FILES... --rail FILE --inclination none --png FILE
       railhunt conicity examples/data/worn_hollow_2mm.whl --critical-speed --json
+      railhunt conicity S1002 examples/data/worn_hollow_2mm.whl --csv fleet.csv
     """
     from railhunt.studies.fleet import wheel_fleet
 
-    check_outputs(overwrite=overwrite, png=png_file)
+    check_outputs(overwrite=overwrite, png=png_file, csv=csv_file)
     veh = _vehicle(vehicle) if critical else None
     echo = stdout_console().print if not as_json else None
 
@@ -159,6 +189,9 @@ def conicity_command(
         with user_input("cannot write --png: "):
             plot_conicity_histogram([r.name for r in rows], [r.conicity for r in rows],
                                     png_file, amplitude * 1e-3)  # fmt: skip
+    if csv_file is not None:
+        with user_input("cannot write --csv: "):
+            _write_csv(csv_file, rows, critical, veh)
     if as_json:
         data = {
             "rail": rail, "rail_inclination": inclination, "amplitude_m": amplitude * 1e-3,

@@ -93,13 +93,20 @@ RULES = (
 @click.option("--poisson", "poisson", default=0.3, show_default=True,
               callback=number_range("", 0.0, 0.499, low_open=False),
               help="Poisson's ratio for --creep.")
+@click.option("--patches", "patches", is_flag=True,
+              help="Every contact patch of each wheel instead (two-point contact, the "
+                   "wheelset yawed by --yaw): position, lead ahead of the axle, rolling "
+                   "radius, contact angle, gap and the share of --load.")
+@click.option("--yaw", "yaw", default=0.0, show_default=True, metavar="MRAD",
+              callback=number_range("mrad", -50.0, 50.0, low_open=False),
+              help="Wheelset yaw for --patches (mrad, + counter-clockwise from above).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (SI units).")
 @overwrite_option
 def contact_command(
     wheel: str, rail: str, inclination: float, gauge: float, back_to_back: float,
     r0: float, y_max: float, y_step: float, amplitude: float, png_file: Path | None,
     csv_file: Path | None, creep: bool, load: float, shear_modulus: float, poisson: float,
-    as_json: bool, overwrite: bool,
+    patches: bool, yaw: float, as_json: bool, overwrite: bool,
 ) -> None:
     """Contact geometry of a wheelset on its rails, and its equivalent conicity.
 
@@ -116,8 +123,16 @@ def contact_command(
     carries the vertical load --load at that contact angle.
 
     \b
+    With --patches, every patch where a wheel touches its rail, the wheelset yawed by
+    --yaw: a second valley of the gap function is a patch when the wheel's elastic
+    approach under --load reaches it (two-point contact); each patch's lead ahead of the
+    axle, rolling radius, contact angle, gap and share of the load. --png draws the
+    contact-point chart of both patches.
+
+    \b
     Examples:
       railhunt contact --png s1002_uic60.png
+      railhunt contact --patches --yaw 5 --png patches.png
       railhunt contact --wheel worn.prw --inclination 1:20 --amplitude 2
       railhunt contact --creep --load 60 --csv ellipses.csv
     """
@@ -138,6 +153,14 @@ def contact_command(
         r = uic60(0.0, step=1e-5) if rail.upper() == "UIC60" else read_profile(rail, "rail")
     from railhunt.workload import contact_workload
 
+    if patches:
+        from railhunt.cli.commands.contact_patches import run_patches
+
+        run_patches(w, r, inclination=inclination, gauge=gauge, back_to_back=back_to_back,
+                    r0=r0, y_max=y_max, y_step=y_step, yaw=yaw, load=load,
+                    shear_modulus=shear_modulus, poisson=poisson, png_file=png_file,
+                    csv_file=csv_file, as_json=as_json)  # fmt: skip
+        return
     positions = 2 * int(round(y_max / y_step)) + 1
     announce(contact_workload(positions, f"±{y_max:g} mm in steps of {y_step:g} mm"))
     with user_input():

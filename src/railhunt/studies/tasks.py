@@ -1,0 +1,294 @@
+"""A study's points grouped into tasks sized by their measured cost, and where tasks run.
+
+The machinery around a point (a Dask task, a write to the results file, a progress tick)
+costs about a millisecond; a plain function or a closed form costs a microsecond, the
+linear critical speed about 10 ms, a nonlinear search a few tenths of a second. So:
+
+1. The first points are evaluated in this process and timed (at least two, and as many
+   as fit in :data:`PROBE_SECONDS`): their median is the cost of a point.
+2. The points are grouped into tasks of about ``task_seconds`` of work (0.5 s by default,
+   :class:`railhunt.StudyOptions`): thousands of points of a plain function, one point of
+   a nonlinear search. A task's rows are appended to the results file at once (one write,
+   one ``fsync``), so a killed study loses at most the task in flight.
+3. The points run in this process when processes cannot pay off: one worker, or a study
+   whose remaining points are estimated to cost less than starting a local cluster
+   (:data:`CLUSTER_START_S`), or a program read from standard input (``python - <
+   study.py``), which worker processes cannot import again (one line says so).
+   Otherwise a local cluster is started in the background while this process goes on
+   evaluating points; once its workers are up (and have evaluated one point each, which
+   loads their compiled code), the remaining tasks go to them. On a cluster that is given
+   (``client``, ``scheduler``) the tasks go there after the first points.
+
+A task runs the same function on the same points wherever it runs, so the numbers are the
+same in this process, on a local cluster and on a remote one.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import os
+import signal
+import statistics
+import sys
+import threading
+import time
+from collections.abc import Callable, Sequence
+from typing import Any
+
+__all__ = ["CLUSTER_START_S", "PROBE_SECONDS", "BackgroundCluster", "TaskEngine",
+           "chunk_size", "run_chunk", "unimportable_main"]  # fmt: skip
+
+#: Evaluation time (s) of the first points timed in this process (at least two points).
+PROBE_SECONDS = 0.05
+#: Estimated cost (s) of starting a local cluster and loading its workers' code: below it,
+#: a study's remaining points run in this process.
+CLUSTER_START_S = 3.0
+#: Tasks per worker a study is split into at least (when its points allow): the last
+#: tasks to finish then keep every worker busy until the end.
+TASKS_PER_WORKER = 4
+
+Sink = Callable[[list[dict[str, Any]]], None]
+
+
+def run_chunk(items: Sequence[Any], task: Callable[[Any], dict[str, Any]]) -> list[dict[str, Any]]:
+    """One task: ``task`` on each item, the rows in order (picklable, for Dask)."""
+    return [task(item) for item in items]
+
+
+def chunk_size(seconds_per_point: float, left: int, workers: int,
+               task_seconds: float) -> int:  # fmt: skip
+    """Points per task: about ``task_seconds`` of work, at least one point, and with more
+    than one worker at most ``left / (TASKS_PER_WORKER * workers)`` points (rounded up)."""
+    per_task = max(1, math.ceil(task_seconds / max(seconds_per_point, 1e-9)))
+    if workers > 1:
+        per_task = min(per_task, max(1, math.ceil(left / (TASKS_PER_WORKER * workers))))
+    return min(per_task, max(1, left))
+
+
+def unimportable_main() -> str | None:
+    """Why worker processes cannot import this program's main module again (None when
+    they can): a script read from standard input (``python - < study.py``) has no file
+    that a new process could run."""
+    main = sys.modules.get("__main__")
+    if main is None or getattr(main, "__spec__", None) is not None:
+        return None
+    path = getattr(main, "__file__", None)
+    if path is None or os.path.isfile(path):
+        return None
+    return (f"this program was read from {path} (python -), which worker processes cannot "
+            "import again")  # fmt: skip
+
+
+class BackgroundCluster:
+    """A local Dask cluster started in a thread, while this process evaluates points.
+
+    The thread blocks SIGINT before it starts the cluster, so the worker processes (whose
+    signal mask is inherited) never see a terminal's Ctrl-C, not even while they start;
+    this process still does. Once up, each worker runs ``prime`` (a study's first point),
+    which loads the compiled code it needs; only then is the cluster :attr:`ready`.
+    """
+
+    def __init__(self, workers: int, prime: Callable[[], object] | None = None) -> None:
+        self.workers = workers
+        self._prime = prime
+        self._cm: Any = None
+        self._client: Any = None
+        self._error: BaseException | None = None
+        self._done = threading.Event()
+        self._thread = threading.Thread(target=self._start, name="railhunt-cluster",
+                                        daemon=True)  # fmt: skip
+        self._thread.start()
+
+    def _start(self) -> None:
+        from railhunt.studies import execute
+
+        try:
+            if hasattr(signal, "pthread_sigmask"):
+                signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+            cm = execute.local_client(self.workers)
+            self._client = cm.__enter__()
+            self._cm = cm
+            if self._prime is not None:
+                self._client.run(self._prime)
+        except BaseException as exc:  # noqa: BLE001 - handed to the main thread
+            self._error = exc
+        finally:
+            self._done.set()
+
+    @property
+    def ready(self) -> bool:
+        """Whether the cluster is up (or failed to start: :meth:`client` says why)."""
+        return self._done.is_set()
+
+    def client(self) -> Any:
+        """The cluster's client, once it is up (the start's error, if it failed)."""
+        while not self._done.wait(0.1):
+            pass
+        if self._error is not None:
+            raise self._error
+        return self._client
+
+    def close(self) -> None:
+        """Close the cluster (after its start finished)."""
+        while not self._done.wait(0.1):
+            pass
+        if self._cm is not None:
+            cm, self._cm = self._cm, None
+            cm.__exit__(None, None, None)
+
+
+class TaskEngine:
+    """Runs a study's batches of points: sizes their tasks, decides where they run.
+
+    Parameters
+    ----------
+    options : StudyOptions
+        Where the study runs and the work per task.
+    client : dask.distributed.Client, optional
+        A cluster to run on (given, or joined from ``options.scheduler``).
+    warm_up : callable, optional
+        Loads (or compiles) every compiled function a point may use, in this process,
+        before a local cluster starts (workers must only read numba's cache).
+    remaining : callable
+        The number of the study's points not done yet (an optimisation's later
+        generations included): the decision to start workers weighs all of them.
+    """
+
+    def __init__(self, options: Any, client: Any, warm_up: Callable[[], None] | None,
+                 remaining: Callable[[], int]) -> None:  # fmt: skip
+        self.options = options
+        self.client = client
+        self.warm_up = warm_up
+        self.remaining = remaining
+        self.seconds_per_point: float | None = None
+        self.background: BackgroundCluster | None = None
+        self.in_process: bool | None = None if client is None else False
+        self.note: str | None = None
+        self.evaluation_s = 0.0  # evaluation time of the points run in this process
+
+    # ------------------------------------------------------------------ in this process
+
+    def _here(self, task: Callable[[Any], dict[str, Any]], items: Sequence[Any],
+              sink: Sink) -> None:  # fmt: skip
+        """Evaluate ``items`` here; their rows go to ``sink`` at once, even on Ctrl-C."""
+        rows: list[dict[str, Any]] = []
+        t0 = time.perf_counter()
+        try:
+            for item in items:
+                rows.append(task(item))
+        finally:
+            self.evaluation_s += time.perf_counter() - t0
+            sink(rows)
+
+    def _probe(self, task: Callable[[Any], dict[str, Any]], items: Sequence[Any],
+               sink: Sink) -> int:  # fmt: skip
+        """Time the first points here (module doc); returns how many were evaluated."""
+        rows: list[dict[str, Any]] = []
+        times: list[float] = []
+        start = time.perf_counter()
+        try:
+            for item in items:
+                t0 = time.perf_counter()
+                rows.append(task(item))
+                times.append(time.perf_counter() - t0)
+                if len(times) >= 2 and time.perf_counter() - start >= PROBE_SECONDS:
+                    break
+        finally:
+            self.evaluation_s += time.perf_counter() - start
+            sink(rows)
+        # the first point also loads the compiled code: the others tell the cost
+        self.seconds_per_point = statistics.median(times[1:]) if len(times) > 1 else times[0]
+        return len(times)
+
+    def _size(self, left: int, workers: int) -> int:
+        return chunk_size(self.seconds_per_point or 0.0, left, workers,
+                          self.options.task_seconds)  # fmt: skip
+
+    def _run_here(self, task: Callable[[Any], dict[str, Any]], items: Sequence[Any],
+                  sink: Sink) -> None:  # fmt: skip
+        i = 0
+        while i < len(items):
+            k = self._size(len(items) - i, 1)
+            self._here(task, items[i:i + k], sink)
+            i += k
+
+    # ------------------------------------------------------------------ where
+
+    def _decide(self, task: Callable[[Any], dict[str, Any]], first: Any) -> None:
+        from railhunt.studies.execute import check_workers
+
+        n = check_workers(self.options.workers)
+        estimate = (self.seconds_per_point or 0.0) * self.remaining()
+        if n == 1 or estimate < CLUSTER_START_S:
+            self.in_process = True
+            return
+        why = unimportable_main()
+        if why is not None:
+            self.note = (f"railhunt: note: {why}: the study runs in this process; save the "
+                         f"program to a file to run it on {n} worker processes")  # fmt: skip
+            print(self.note, file=sys.stderr, flush=True)
+            self.in_process = True
+            return
+        if self.warm_up is not None:
+            try:
+                self.warm_up()
+            except Exception as exc:
+                from railhunt.studies.sweep import interrupted
+
+                if interrupted(exc):  # Ctrl-C inside compiled code
+                    raise KeyboardInterrupt from exc
+                raise
+        self.in_process = False
+        self.background = BackgroundCluster(n, functools.partial(run_chunk, [first], task))
+
+    def _workers(self, client: Any) -> int:
+        try:
+            return max(1, len(client.scheduler_info().get("workers", {})))
+        except Exception:  # noqa: BLE001 - a client without scheduler info: count one
+            return 1
+
+    # ------------------------------------------------------------------ a batch
+
+    def run(self, task: Callable[[Any], dict[str, Any]], items: Sequence[Any],
+            sink: Sink) -> list[tuple[Any, str]]:  # fmt: skip
+        """Evaluate ``items`` (in tasks, here or on workers); every task's rows go to
+        ``sink`` as it finishes. Returns the items lost, with the reason."""
+        items = list(items)
+        if not items:
+            return []
+        i = 0
+        if self.seconds_per_point is None:
+            i = self._probe(task, items, sink)
+        if i == len(items):
+            return []
+        if self.in_process is None:
+            self._decide(task, items[0])
+        if self.in_process:
+            self._run_here(task, items[i:], sink)
+            return []
+        background = self.background
+        while background is not None and not background.ready and i < len(items):
+            k = self._size(len(items) - i, 1)  # meanwhile, go on here
+            self._here(task, items[i:i + k], sink)
+            i += k
+        if i == len(items):
+            return []
+        client = self.client if self.client is not None else background.client()
+        return self._distribute(client, task, items[i:], sink)
+
+    def _distribute(self, client: Any, task: Callable[[Any], dict[str, Any]],
+                    items: list[Any], sink: Sink) -> list[tuple[Any, str]]:  # fmt: skip
+        from railhunt.studies.execute import run_tasks
+
+        k = self._size(len(items), self._workers(client))
+        groups = [items[j:j + k] for j in range(0, len(items), k)]
+        lost = run_tasks(functools.partial(run_chunk, task=task), groups, sink,
+                         client=client)  # type: ignore[arg-type]
+        return [(item, reason) for group, reason in lost for item in group]
+
+    def close(self) -> None:
+        """Close a local cluster this engine started."""
+        if self.background is not None:
+            background, self.background = self.background, None
+            background.close()
