@@ -35,10 +35,11 @@ linearly in ``y`` like every other per-point quantity. Symmetry
 ``u_x >= 0`` and ghost nodes of the right parity. Finally ``|(t_x, t_y)|`` is kept below 1
 smoothly (above 0.98 it is compressed by a tanh; the exact theory gives at most 1).
 
-Cost: below ``rho = 0.005`` the table is not read (the correction is below 1e-4 of the
-force), between 0.005 and 0.01 its weight rises smoothly; the 27 control points of a
-stencil are read as 4-wide vectors (:func:`slice_stencil`), and the four reciprocal
-square roots of the coordinates come from one division.
+Cost: below ``rho = 0.005`` the table is not read (its correction ``q D`` is below 2e-5
+of mu N there, ``|D| <= 0.5`` near the origin: 0.3 % of the force), between 0.005 and
+0.01 its weight rises smoothly; the 27 control points of a stencil are read as 4-wide
+vectors (:func:`slice_stencil`), and the four reciprocal square roots of the coordinates
+come from one division.
 
 Layout of the flat array (:class:`TableHeader`): a header, then the B-spline control
 points ``(n_ab, n_x + 2, n_y + 2, n_s + 2, LANES)`` in C order (one ghost node at each end
@@ -78,7 +79,7 @@ class TableHeader(IntEnum):
 #: |(t_x, t_y)| above this is compressed smoothly toward (never to) 1.
 _CAP = 0.98
 #: Below ``rho = 0.005`` the table is not read (its correction, ``q D = O(rho^2)``, is
-#: below 1e-4 of the force there), from ``rho = 0.01`` it is read in full; in between its
+#: below 2e-5 of mu N there), from ``rho = 0.01`` it is read in full; in between its
 #: weight rises as a cubic smoothstep in ``rho^2`` (continuous first derivatives).
 _RHO2_TABLE_FROM = 0.005**2
 _RHO2_TABLE_FULL = 0.01**2
