@@ -24,7 +24,7 @@ from importlib import resources
 
 import numpy as np
 
-from railhunt.kernel.creep_table import TableHeader, table_creep
+from railhunt.kernel.creep_table import LANES, TableHeader, table_creep
 
 __all__ = ["CreepTable", "build_creep_table", "control_points", "shipped_creep_table"]
 
@@ -102,7 +102,13 @@ def control_points(values: np.ndarray) -> np.ndarray:
     for k, parity in enumerate((-1, 1, 1)):
         c = _solve_axis(values[..., k], 1, parity)
         c = _solve_axis(c, 2, 0)
-        out.append(_solve_axis(c, 3, 0))
+        c = _solve_axis(c, 3, 0)
+        # The parity across s_x = 0 to the bit (the later solves round each slab alike
+        # only to rounding): the ghost mirrors the first inner point, D_x's node is 0.
+        c[:, 0] = parity * c[:, 2]
+        if parity < 0:
+            c[:, 1] = 0.0
+        out.append(c)
     return np.stack(out, axis=-1)
 
 
@@ -145,7 +151,10 @@ class CreepTable:
         head[TableHeader.N_Y], head[TableHeader.N_S] = ny, ns
         head[TableHeader.LOG_AB0], head[TableHeader.DLOG_AB] = self.ab_grid
         head[TableHeader.POISSON] = self.poisson
-        return np.ascontiguousarray(np.concatenate([head, control_points(self.values).ravel()]))
+        points = control_points(self.values)
+        lanes = np.zeros((*points.shape[:-1], LANES))
+        lanes[..., :3] = points
+        return np.ascontiguousarray(np.concatenate([head, lanes.ravel()]))
 
     def normalised(self, ux: float, uy: float, us: float, a_over_b: float,
                    moment: tuple[float, float] | None = None
@@ -181,12 +190,17 @@ def _linear_coefficients(solver: Solver, a: float, b: float, poisson: float
 
 
 def slice_values(solver: Solver, a_over_b: float, sx: np.ndarray, sy: np.ndarray,
-                 ss: np.ndarray, poisson: float) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+                 ss: np.ndarray, poisson: float, vectorised: bool = False
+                 ) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
     """Node values ``D`` of one ``a/b`` slice and the solver's coefficients there.
 
     ``s_y`` is the coordinate of the lateral linear force ``u_y + u_s``. Only ``s_y >= 0`` is
     solved; ``D(s_x, -s_y, -s_s) = (D_x, -D_y, -D_m)(s_x, s_y, s_s)``
-    (the mirror ``y -> -y``) fills the rest (``sy`` and ``ss`` must be symmetric grids).
+    (the mirror ``y -> -y``) fills the rest (``sy`` and ``ss`` must be symmetric grids) and
+    makes the plane ``s_y = 0`` symmetric (its two halves averaged); ``D_x`` is exactly 0
+    at ``s_x = 0`` (``F_x`` is odd in ``xi``). ``vectorised``: the solver takes arrays of
+    creepages (one call per slice, in the grid's order: each case starts from its
+    neighbour's solution).
     """
     a = 5e-3 * math.sqrt(a_over_b)
     b = 5e-3 / math.sqrt(a_over_b)
@@ -199,30 +213,40 @@ def slice_values(solver: Solver, a_over_b: float, sx: np.ndarray, sy: np.ndarray
     half = sy.size // 2
     ux_all, uf_all = _u_of_s(sx, P_CREEPAGE), _u_of_s(sy, P_CREEPAGE)
     us_all = _u_of_s(ss, P_SPIN) / math.sqrt(1.0 + ms * ms)
-    for i, ux in enumerate(ux_all):
-        for j in range(half, sy.size):
-            for k, us in enumerate(us_all):
-                uy = uf_all[j] - us  # the grid's s_y is the lateral linear force u_y + u_s
-                lm = my * uy - ms * us
-                rho2 = ux * ux + uy * uy + us * us + lm * lm
-                if rho2 == 0.0:
-                    continue
-                xi = ux * mu * n_load / (g * c * c * c11)
-                eta = uy * mu * n_load / (g * c * c * c22)
-                phi = us * mu * n_load / (g * c**3 * c23)
-                fx, fy, mz = solver(xi, eta, phi, a, b, mu, n_load, g, poisson)
-                t = np.array([fx, fy, mz / c]) / (mu * n_load)
-                inv = 1.0 / math.sqrt(1.0 + rho2)
-                base = np.array([-ux, -(uy + us), lm]) * inv
-                out[i, j, k] = (t - base) / (rho2 * inv * inv)
+    # Node creepages of the solved half (s_y >= 0), index order (s_x, s_y, s_s).
+    ux, uf, us = np.meshgrid(ux_all, uf_all[half:], us_all, indexing="ij")
+    uy = uf - us  # the grid's s_y is the lateral linear force u_y + u_s
+    lm = my * uy - ms * us
+    rho2 = ux * ux + uy * uy + us * us + lm * lm
+    live = rho2 > 0.0
+    xi = ux[live] * mu * n_load / (g * c * c * c11)
+    eta = uy[live] * mu * n_load / (g * c * c * c22)
+    phi = us[live] * mu * n_load / (g * c**3 * c23)
+    if vectorised:
+        fx, fy, mz = (np.asarray(v, dtype=float) for v in solver(xi, eta, phi, a, b, mu,
+                                                                  n_load, g, poisson))
+    else:
+        fx, fy, mz = np.array([solver(float(x), float(e), float(p), a, b, mu, n_load, g,
+                                      poisson) for x, e, p in zip(xi, eta, phi, strict=True)]).T
+    t = np.stack([fx, fy, mz / c], axis=-1) / (mu * n_load)
+    inv = 1.0 / np.sqrt(1.0 + rho2[live])
+    base = np.stack([-ux[live], -(uy[live] + us[live]), lm[live]], axis=-1) * inv[:, None]
+    solved = np.zeros((*ux.shape, 3))
+    solved[live] = (t - base) / (rho2[live] * inv * inv)[:, None]
+    out[:, half:] = solved
+    mirror = np.array([1.0, -1.0, -1.0])
+    if sy.size % 2:  # the plane s_y = 0: symmetric under (s_s, D_y, D_m) -> -(...)
+        out[:, half] = 0.5 * (out[:, half] + out[:, half, ::-1] * mirror)
     for j in range(half):
-        out[:, j] = out[:, sy.size - 1 - j, ::-1] * np.array([1.0, -1.0, -1.0])
+        out[:, j] = out[:, sy.size - 1 - j, ::-1] * mirror
+    out[0, ..., 0] = 0.0
     return out, coef
 
 
 def build_creep_table(solver: Solver, *, a_over_b: np.ndarray, n_x: int = 9, n_y: int = 17,
                       n_s: int = 17, poisson: float = 0.3,
-                      map_slices: Callable | None = None) -> CreepTable:  # fmt: skip
+                      map_slices: Callable | None = None,
+                      vectorised: bool = False) -> CreepTable:  # fmt: skip
     """Solve the contact problem on the grid and return the table.
 
     Parameters
@@ -237,12 +261,15 @@ def build_creep_table(solver: Solver, *, a_over_b: np.ndarray, n_x: int = 9, n_y
         Poisson's ratio.
     map_slices : callable, optional
         ``map(function, iterable)`` to spread the slices over processes.
+    vectorised : bool
+        The solver takes arrays of creepages (one call per slice).
     """
     log_ab = np.log(np.asarray(a_over_b, dtype=np.float64))
     sx = np.linspace(0.0, 1.0, n_x)
     sy = np.linspace(-1.0, 1.0, n_y)
     ss = np.linspace(-1.0, 1.0, n_s)
-    job = functools.partial(slice_values, solver, sx=sx, sy=sy, ss=ss, poisson=poisson)
+    job = functools.partial(slice_values, solver, sx=sx, sy=sy, ss=ss, poisson=poisson,
+                            vectorised=vectorised)
     results = list((map_slices or map)(job, np.exp(log_ab)))
     values = np.stack([r[0] for r in results])
     coefficients = np.stack([r[1] for r in results])

@@ -148,8 +148,10 @@ def point_wheel_creep(
     -------
     tuple of float
         ``(Fx_L, Fy_L, Mz_L, Fx_R, Fy_R, Mz_R, xi_x_L, xi_y_L, phi_L, xi_x_R, xi_y_R,
-        phi_R, N_L, N_R, delta_L, delta_R)``: forces (N) and spin moments (N*m) in each
-        contact's plane, creepages (-, -, 1/m), normal forces (N), contact angles (rad).
+        phi_R, N_L, N_R, delta_L, delta_R, cos delta_L, sin delta_L, cos delta_R,
+        sin delta_R)``: forces (N) and spin moments (N*m) in each contact's plane,
+        creepages (-, -, 1/m), normal forces (N), contact angles (rad) and their cosines
+        and sines.
     """
     a, r0 = wr[WR.A], wr[WR.R0]
     (r_l, r_r, d_l, d_r, c1l, k11l, k22l, k23l, k33l, abl,
@@ -223,7 +225,7 @@ def point_wheel_creep(
     gl = normal_force_ratio(cdl, sdl, fyl / n0l, 1.0)
     gr = normal_force_ratio(cdr, sdr, fyr / n0r, -1.0)
     return (fxl * gl, fyl * gl, mzl * gl, fxr * gr, fyr * gr, mzr * gr, xl, yl, sl, xr, yr,
-            sr, gl * n0l, gr * n0r, d_l, d_r)
+            sr, gl * n0l, gr * n0r, d_l, d_r, cdl, sdl, cdr, sdr)
 
 
 @njit(cache=True)
@@ -245,11 +247,9 @@ def point_wheelset_contact(
         forces (N).
     """
     cpsi, spsi = math.cos(psi), math.sin(psi)
-    (fxl, fyl, mzl, fxr, fyr, mzr, _, _, _, _, _, _, n_l, n_r, d_l,
-     d_r) = point_wheel_creep(y_rel, dy, cpsi, spsi, yaw_rate, v, wr, q_left, q_right,
+    (fxl, fyl, mzl, fxr, fyr, mzr, _, _, _, _, _, _, n_l, n_r, _, _, cdl, sdl, cdr,
+     sdr) = point_wheel_creep(y_rel, dy, cpsi, spsi, yaw_rate, v, wr, q_left, q_right,
                               table)  # fmt: skip
-    cdl, sdl = math.cos(d_l), math.sin(d_l)
-    cdr, sdr = math.cos(d_r), math.sin(d_r)
     a = wr[WR.A]
     # Into track coordinates (Eqs. 29-30 with the normal forces' lateral parts).
     nsl = n_l * sdl
