@@ -448,3 +448,18 @@ def _close_quietly(obj: Any) -> None:
     except Exception:  # noqa: BLE001 - shutting down; nothing left to save
         pass
 
+
+def interrupted(exc: BaseException) -> bool:
+    """Whether ``exc`` stands for a Ctrl-C.
+
+    A SIGINT that arrives inside compiled (numba) code surfaces as ``SystemError: ...
+    returned a result with an exception set`` whose context is the KeyboardInterrupt; it
+    must stop the study, not be written down as a failed point.
+    """
+    seen = set()
+    while exc is not None and id(exc) not in seen:
+        if isinstance(exc, KeyboardInterrupt):
+            return True
+        seen.add(id(exc))
+        exc = exc.__cause__ or exc.__context__
+    return False

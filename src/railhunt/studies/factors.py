@@ -154,8 +154,8 @@ def function_task(item: tuple[int, dict[str, float]], function: Callable[..., Ma
                   outputs: tuple[str, ...]) -> dict[str, Any]:  # fmt: skip
     """One point of a study on a model function: its row (``status`` failed on an error or
     a missing output)."""
+    from railhunt.studies.execute import interrupted
     from railhunt.studies.store import STATUS_FAILED, STATUS_OK
-    from railhunt.studies.sweep import interrupted
 
     index, values = item
     row: dict[str, Any] = {"point": index, "line": "function", **values}

@@ -18,7 +18,10 @@ from typing import Any
 import numpy as np
 
 from railhunt.studies.design import Point, build_design, frequency_speed, parse_ties
-from railhunt.studies.execute import CONNECT_TIMEOUT
+from railhunt.studies.execute import (
+    CONNECT_TIMEOUT,
+    interrupted,  # noqa: F401 (its name here is kept)
+)
 from railhunt.studies.options import StudyOptions, resolve_run
 from railhunt.studies.outputs import (
     NEW_OUTPUT_COLUMNS,
@@ -154,22 +157,6 @@ def evaluate_point(
         status, message = STATUS_FAILED, f"{type(exc).__name__}: {exc}"
     row["status"], row["message"] = status, message
     return row
-
-
-def interrupted(exc: BaseException) -> bool:
-    """Whether ``exc`` stands for a Ctrl-C.
-
-    A SIGINT that arrives inside compiled (numba) code surfaces as ``SystemError: ...
-    returned a result with an exception set`` whose context is the KeyboardInterrupt; it
-    must stop the study, not be written down as a failed point.
-    """
-    seen = set()
-    while exc is not None and id(exc) not in seen:
-        if isinstance(exc, KeyboardInterrupt):
-            return True
-        seen.add(id(exc))
-        exc = exc.__cause__ or exc.__context__
-    return False
 
 
 def point_task(item: tuple[Point, float], vehicle: Vehicle, outputs: tuple[str, ...],

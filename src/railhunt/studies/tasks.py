@@ -234,7 +234,7 @@ class TaskEngine:
             try:
                 self.warm_up()
             except Exception as exc:
-                from railhunt.studies.sweep import interrupted
+                from railhunt.studies.execute import interrupted
 
                 if interrupted(exc):  # Ctrl-C inside compiled code
                     raise KeyboardInterrupt from exc
