@@ -161,15 +161,17 @@ def optimize(
         How the study runs, in one object (:class:`railhunt.StudyOptions`), instead of
         ``out`` ... ``wait_for_workers`` (giving both is an error naming the keyword).
 
+    Returns
+    -------
+    ParetoResult
+
+    Notes
+    -----
     Every generation's designs are evaluated as one batch on one results file and one
     cluster (or in this process) for the whole run. The result's ``timings`` (and the
     ``timings`` of the results file's description) give the time spent in pymoo (asking
     for and being told a generation's designs), in the evaluations (in this process) and
     in railhunt's machinery around them, in s.
-
-    Returns
-    -------
-    ParetoResult
     """
     check_model(model)
     objs = [parse_objective(o) for o in objectives]
