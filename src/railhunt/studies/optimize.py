@@ -136,6 +136,12 @@ def optimize(
 ) -> ParetoResult:
     """Pareto front of ``objectives`` over the ``factors`` by NSGA-II (pymoo).
 
+    Every generation's designs are evaluated as one batch on one results file and one
+    cluster (or in this process) for the whole run. The result's ``timings`` (and the
+    ``timings`` of the results file's description) give the time spent in pymoo (asking
+    for and being told a generation's designs), in the evaluations (in this process) and
+    in railhunt's machinery around them, in s.
+
     Parameters
     ----------
     model : Vehicle or callable
@@ -160,12 +166,6 @@ def optimize(
     run : StudyOptions, optional
         How the study runs, in one object (:class:`railhunt.StudyOptions`), instead of
         ``out`` ... ``wait_for_workers`` (giving both is an error naming the keyword).
-
-    Every generation's designs are evaluated as one batch on one results file and one
-    cluster (or in this process) for the whole run. The result's ``timings`` (and the
-    ``timings`` of the results file's description) give the time spent in pymoo (asking
-    for and being told a generation's designs), in the evaluations (in this process) and
-    in railhunt's machinery around them, in s.
 
     Returns
     -------
