@@ -208,3 +208,24 @@ def test_the_engine_estimates_the_cost_of_a_point():
                       rows.extend)  # fmt: skip
     assert 2 <= n <= 10 and len(rows) == n
     assert 0.01 <= engine.seconds_per_point < 0.05
+
+
+def test_a_local_cluster_that_cannot_start_leaves_the_study_to_this_process(
+        monkeypatch, capsys, tmp_path):  # fmt: skip
+    import railhunt.studies.execute as execute
+
+    def broken(n):
+        raise OSError("no free port")
+
+    monkeypatch.setattr(execute, "local_client", broken)
+    monkeypatch.setattr(tasks, "CLUSTER_START_S", 0.0)
+
+    def slow(x1: float, x2: float, x3: float) -> dict[str, float]:
+        time.sleep(0.005)
+        return ishigami(x1, x2, x3)
+
+    reference = sensitivity(ishigami, FACTORS, ["y"], samples=8, workers=1)
+    r = sensitivity(slow, FACTORS, ["y"], samples=8, workers=2, out=tmp_path / "b.csv")
+    assert r.study.computed == 40 and r.indices == reference.indices
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "the local cluster did not start (OSError: no free port)" in err[0]

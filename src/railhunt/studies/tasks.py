@@ -274,7 +274,20 @@ class TaskEngine:
             i += k
         if i == len(items):
             return []
-        client = self.client if self.client is not None else background.client()
+        client = self.client
+        if client is None:
+            try:
+                client = background.client()
+            except Exception as exc:  # noqa: BLE001 - the study can still finish here
+                text = " ".join(str(exc).split())[:200]
+                self.note = (f"railhunt: note: the local cluster did not start "
+                             f"({type(exc).__name__}: {text}); the study goes on in this "
+                             "process")  # fmt: skip
+                print(self.note, file=sys.stderr, flush=True)
+                self.in_process = True
+                self.close()
+                self._run_here(task, items[i:], sink)
+                return []
         return self._distribute(client, task, items[i:], sink)
 
     def _distribute(self, client: Any, task: Callable[[Any], dict[str, Any]],
