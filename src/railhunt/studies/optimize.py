@@ -32,7 +32,7 @@ from railhunt.studies.execute import CONNECT_TIMEOUT
 from railhunt.studies.factors import check_model, parse_factors
 from railhunt.studies.options import StudyOptions, resolve_run
 from railhunt.studies.outputs import OutputOptions, options_from
-from railhunt.studies.pareto_result import ParetoResult, hypervolumes, non_dominated
+from railhunt.studies.pareto_result import ParetoResult, fronts, hypervolumes, non_dominated
 from railhunt.studies.runner import StudyRun
 from railhunt.studies.sensitivity import capped_value
 from railhunt.vehicle import Vehicle
@@ -312,10 +312,11 @@ def _result(rows: dict[int, dict[str, Any]], designs: list[tuple[int, int]],
     evaluated = pd.DataFrame.from_records(records)
     fmin_a = np.array(fmin)
     feas_a = np.array(feasible, dtype=bool)
-    best = non_dominated(fmin_a, feas_a)
-    front = evaluated.iloc[best].reset_index(drop=True)
     gens = evaluated["generation"].to_numpy()
-    hv = hypervolumes(fmin_a, feas_a, gens, len(history))
+    by_generation = fronts(fmin_a, feas_a, gens, len(history))
+    best = by_generation[-1] if by_generation else non_dominated(fmin_a, feas_a)
+    front = evaluated.iloc[best].reset_index(drop=True)
+    hv = hypervolumes(fmin_a, feas_a, gens, len(history), by_generation)
     start_rec = None
     if start is not None:
         start_rec = {c: start.get(c, math.nan) for c in param_cols}
