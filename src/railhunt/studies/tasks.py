@@ -44,6 +44,10 @@ PROBE_SECONDS = 0.05
 #: Estimated cost (s) of starting a local cluster and loading its workers' code: below it,
 #: a study's remaining points run in this process.
 CLUSTER_START_S = 3.0
+#: Estimated cost (s) of a new worker loading the compiled model code (numba's cache) for a
+#: vehicle study, on top of :data:`CLUSTER_START_S`: measured 15-20 s on the 2-core
+#: machine (a 24-point sweep took 27 s on 2 fresh workers, 7 s in one process).
+WORKER_CODE_S = 15.0
 #: Tasks per worker a study is split into at least (when its points allow): the last
 #: tasks to finish then keep every worker busy until the end.
 TASKS_PER_WORKER = 4
@@ -220,7 +224,8 @@ class TaskEngine:
 
         n = check_workers(self.options.workers)
         estimate = (self.seconds_per_point or 0.0) * self.remaining()
-        if n == 1 or estimate < CLUSTER_START_S:
+        start_cost = CLUSTER_START_S + (WORKER_CODE_S if self.warm_up is not None else 0.0)
+        if n == 1 or estimate < start_cost:
             self.in_process = True
             return
         why = unimportable_main()
