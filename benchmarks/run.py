@@ -6,6 +6,7 @@ Run from the repository root::
     python benchmarks/run.py --quick    # fewer repeats
     python benchmarks/run.py --repeat 9
     python benchmarks/run.py --only creep   # the contact mechanics' rows alone
+    python benchmarks/run.py --only machinery   # the study machinery's rows alone
 
 Times are medians over the repeats, measured warm (after a first call has compiled or
 loaded the numba functions). The exit code is 0 whatever the outcome: this is a report,
@@ -215,9 +216,13 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=5, help="repeats per case (default 5)")
     parser.add_argument("--quick", action="store_true", help="fewer repeats (2, baseline 1)")
-    parser.add_argument("--only", choices=["creep"], help="run only these rows")
+    parser.add_argument("--only", choices=["creep", "machinery"], help="run only these rows")
     args = parser.parse_args(argv)
     repeat = 2 if args.quick else max(1, args.repeat)
+    if args.only == "machinery":
+        import study_machinery
+
+        return study_machinery.main()
     if args.only == "creep":
         from contact_mechanics import creep_rows
 

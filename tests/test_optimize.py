@@ -94,3 +94,27 @@ def test_normal_factor_refused():
     with pytest.raises(ValueError, match="needs bounds"):
         optimize(zdt1, {"x0": ("normal", 0.5, 0.1), "x1": (0, 1)}, ["min f1", "min f2"],
                  workers=1)
+
+
+def test_fronts_by_generation_match_the_pairwise_definition():
+    """The vectorised, incremental fronts equal the definition checked pair by pair (no
+    feasible row dominates a front row; duplicates kept once, the first), with many ties."""
+    from railhunt.studies.pareto_result import fronts, non_dominated
+
+    rng = np.random.default_rng(1)
+    for _ in range(60):
+        n, k, gens = int(rng.integers(5, 90)), int(rng.integers(2, 4)), int(rng.integers(1, 6))
+        f = rng.integers(0, 6, size=(n, k)).astype(float)
+        feasible = rng.random(n) < 0.8
+        generation = np.sort(rng.integers(0, gens, size=n))
+        by_generation = fronts(f, feasible, generation, gens)
+        for gen in range(gens):
+            idx = np.flatnonzero(feasible & (generation <= gen))
+            keep: list[int] = []
+            for i in idx:
+                others = f[idx]
+                dominated = np.any(np.all(others <= f[i], axis=1) & np.any(others < f[i], axis=1))
+                if not dominated and not any(np.array_equal(f[i], f[j]) for j in keep):
+                    keep.append(int(i))
+            assert by_generation[gen].tolist() == keep
+            assert non_dominated(f, feasible & (generation <= gen)).tolist() == keep

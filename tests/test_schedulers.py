@@ -186,6 +186,7 @@ def test_workers_are_capped_at_the_cores(tmp_path, monkeypatch):
     # two cheap points would run in this process: make starting workers look free, and
     # time only the first point, so that the second goes to the (fake) cluster
     monkeypatch.setattr(tasks, "CLUSTER_START_S", 0.0)
+    monkeypatch.setattr(tasks, "WORKER_CODE_S", 0.0)
     monkeypatch.setattr(tasks.TaskEngine, "_probe", _probe_one)
     if default_workers() == 1:
         pytest.skip("one core: the points run in this process")

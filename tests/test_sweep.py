@@ -484,3 +484,32 @@ def test_a_task_that_keeps_killing_its_worker_is_lost_not_written():
     assert sorted(r["point"] for r in done) == [0, 2]
     assert [item for item, _ in lost] == [1]
     assert "KilledWorker" in lost[0][1]
+
+
+def slow_ishigami(x1: float, x2: float, x3: float) -> dict[str, float]:
+    """Ishigami at about a millisecond a point (a cheap surrogate model)."""
+    time.sleep(0.001)
+    return {"y": math.sin(x1) + 7.0 * math.sin(x2) ** 2 + 0.1 * x3**4 * math.sin(x1)}
+
+
+def test_cheap_points_in_tasks_on_dask_give_the_same_file(dask_client, tmp_path):
+    """A study of cheap points on a Dask cluster, in tasks of several points: the same
+    indices and a byte-identical file as in this process."""
+    pytest.importorskip("SALib")
+    import cloudpickle
+
+    cloudpickle.register_pickle_by_value(sys.modules[__name__])
+    factors = {k: (-math.pi, math.pi) for k in ("x1", "x2", "x3")}
+    here = rh.sensitivity(slow_ishigami, factors, ["y"], samples=64, workers=1,
+                          out=tmp_path / "here.csv")  # fmt: skip
+    busy = []
+
+    def watch(done: int, total: int) -> None:
+        busy.append(any(dask_client.processing().values()))
+
+    run = rh.StudyOptions(client=dask_client, out=tmp_path / "dask.csv", task_seconds=0.01,
+                          progress=watch)  # fmt: skip
+    there = rh.sensitivity(slow_ishigami, factors, ["y"], samples=64, run=run)
+    assert any(busy), "no task ran on the cluster"
+    assert there.indices == here.indices
+    assert (tmp_path / "dask.csv").read_bytes() == (tmp_path / "here.csv").read_bytes()

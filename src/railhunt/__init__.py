@@ -31,6 +31,7 @@ Main entry points (imported lazily, so ``import railhunt`` stays fast)::
     reproduce                        the paper's Figs. 6-13 and an HTML report
     sensitivity                      Sobol / Morris indices of outputs to varied factors
     optimize                         Pareto front of objectives by NSGA-II
+    StudyOptions                     how a study runs (file, resume, workers, cluster, progress)
 """
 
 # ruff: noqa: I001  (the TYPE_CHECKING block keeps one `from` line per module with `X as X`)
@@ -102,6 +103,7 @@ _EXPORTS = {
     "SensitivityResult": "railhunt.studies.sensitivity",
     "optimize": "railhunt.studies.optimize",
     "ParetoResult": "railhunt.studies.optimize",
+    "StudyOptions": "railhunt.studies.options",
 }
 
 __all__ = sorted(_EXPORTS)
@@ -160,6 +162,7 @@ if TYPE_CHECKING:
     from railhunt.paper2019 import load_table1 as load_table1
     from railhunt.simulation import SimulationResult as SimulationResult, simulate as simulate
     from railhunt.studies.optimize import ParetoResult as ParetoResult, optimize as optimize
+    from railhunt.studies.options import StudyOptions as StudyOptions
     from railhunt.studies.reproduce import reproduce as reproduce
     from railhunt.studies.sections import (
         section_changes as section_changes,

@@ -24,7 +24,7 @@ from railhunt.cli.rules import Excludes, Requires
 __all__ = ["CONNECT_RULE", "OUTPUT_SECONDS", "STUDY_RULES", "connect_timeout_option",
            "scheduler_client", "announce_study", "check_study_outputs",
            "check_workers_option", "optional_out_rules", "report_lost", "running_study",
-           "study_options"]  # fmt: skip
+           "study_options", "study_run"]  # fmt: skip
 
 Decorator = Callable[[Callable[..., Any]], Callable[..., Any]]
 
@@ -143,18 +143,57 @@ def check_study_outputs(out: Path | None, resume: bool, overwrite: bool,
     check_outputs(overwrite=True, out=out, **{f"out {out}: its study file": companions[-1]})
 
 
+#: Where ``--task-seconds`` is kept between parsing and :func:`study_run`.
+_TASK_KEY = "railhunt.task_seconds"
+
+
+def _keep_task_seconds(ctx: click.Context, param: click.Parameter,
+                       value: float | None) -> float | None:  # fmt: skip
+    if value is not None:
+        from railhunt.cli.options import number_range
+
+        value = number_range("s", 0.0, 3600.0)(ctx, param, value)
+    ctx.meta[_TASK_KEY] = value
+    return value
+
+
+def study_run(out: Path | None, resume: bool, overwrite: bool, workers: int | None,
+              client: Any, progress: bool | None = None) -> Any:  # fmt: skip
+    """The :class:`railhunt.StudyOptions` of a study command's shared flags
+    (:func:`study_options`): the results file, ``--resume``/``--overwrite``, the local
+    workers or the joined ``--scheduler``'s client, ``--task-seconds``, and a progress bar
+    on a terminal (``progress`` None: :func:`railhunt.cli.output.show_progress`)."""
+    from railhunt.cli.output import show_progress
+    from railhunt.studies.options import TASK_SECONDS, StudyOptions
+
+    ctx = click.get_current_context(silent=True)
+    task = ctx.meta.get(_TASK_KEY) if ctx is not None else None
+    with user_input():
+        return StudyOptions(out=out, resume=resume, overwrite=overwrite, client=client,
+                            workers=None if client is not None else workers,
+                            progress=show_progress() if progress is None else progress,
+                            task_seconds=TASK_SECONDS if task is None else task)  # fmt: skip
+
+
 def study_options(out_required: bool = True,
                   out_help: str = "Results file (.csv, or .parquet with pyarrow).",
                   ) -> Decorator:  # fmt: skip
     """Add ``--out FILE``, ``--resume``, ``--overwrite``, ``--workers N``, ``--scheduler
-    ADDRESS`` and ``--connect-timeout S`` (in this order in the help) to a study command.
+    ADDRESS``, ``--connect-timeout S``, ``--wait-for-workers`` and ``--task-seconds S`` (in
+    this order in the help) to a study command: the one set of flags of every study.
 
     The command receives ``out`` (a Path or None), ``resume``, ``overwrite``, ``workers``,
     ``scheduler`` and ``connect_timeout``; check ``workers`` with
-    :func:`check_workers_option`, join the scheduler with :func:`scheduler_client`.
+    :func:`check_workers_option`, join the scheduler with :func:`scheduler_client`, and
+    make the study's :class:`railhunt.StudyOptions` with :func:`study_run`.
     """
 
     def decorate(func: Callable[..., Any]) -> Callable[..., Any]:
+        func = click.option("--task-seconds", type=float, metavar="S", expose_value=False,
+                            callback=_keep_task_seconds,
+                            help="Work per task (s): points are grouped into tasks of about "
+                            "this much evaluation time, measured on the first points; each "
+                            "task's rows are written to FILE at once [default: 0.5].")(func)
         func = connect_timeout_option()(func)
         func = click.option("--scheduler", metavar="ADDRESS",
                             help="Run on the Dask cluster of this scheduler (e.g. "

@@ -32,7 +32,7 @@ from railhunt.studies.execute import CONNECT_TIMEOUT
 from railhunt.studies.factors import check_model, parse_factors
 from railhunt.studies.options import StudyOptions, resolve_run
 from railhunt.studies.outputs import OutputOptions, options_from
-from railhunt.studies.pareto_result import ParetoResult, hypervolumes, non_dominated
+from railhunt.studies.pareto_result import ParetoResult, fronts, hypervolumes, non_dominated
 from railhunt.studies.runner import StudyRun
 from railhunt.studies.sensitivity import capped_value
 from railhunt.vehicle import Vehicle
@@ -136,6 +136,12 @@ def optimize(
 ) -> ParetoResult:
     """Pareto front of ``objectives`` over the ``factors`` by NSGA-II (pymoo).
 
+    Every generation's designs are evaluated as one batch on one results file and one
+    cluster (or in this process) for the whole run. The result's ``timings`` (and the
+    ``timings`` of the results file's description) give the time spent in pymoo (asking
+    for and being told a generation's designs), in the evaluations (in this process) and
+    in railhunt's machinery around them, in s.
+
     Parameters
     ----------
     model : Vehicle or callable
@@ -164,14 +170,6 @@ def optimize(
     Returns
     -------
     ParetoResult
-
-    Notes
-    -----
-    Every generation's designs are evaluated as one batch on one results file and one
-    cluster (or in this process) for the whole run. The result's ``timings`` (and the
-    ``timings`` of the results file's description) give the time spent in pymoo (asking
-    for and being told a generation's designs), in the evaluations (in this process) and
-    in railhunt's machinery around them, in s.
     """
     check_model(model)
     objs = [parse_objective(o) for o in objectives]
@@ -314,10 +312,11 @@ def _result(rows: dict[int, dict[str, Any]], designs: list[tuple[int, int]],
     evaluated = pd.DataFrame.from_records(records)
     fmin_a = np.array(fmin)
     feas_a = np.array(feasible, dtype=bool)
-    best = non_dominated(fmin_a, feas_a)
-    front = evaluated.iloc[best].reset_index(drop=True)
     gens = evaluated["generation"].to_numpy()
-    hv = hypervolumes(fmin_a, feas_a, gens, len(history))
+    by_generation = fronts(fmin_a, feas_a, gens, len(history))
+    best = by_generation[-1] if by_generation else non_dominated(fmin_a, feas_a)
+    front = evaluated.iloc[best].reset_index(drop=True)
+    hv = hypervolumes(fmin_a, feas_a, gens, len(history), by_generation)
     start_rec = None
     if start is not None:
         start_rec = {c: start.get(c, math.nan) for c in param_cols}

@@ -31,15 +31,31 @@ def non_dominated(f: np.ndarray, feasible: np.ndarray) -> np.ndarray:
     return kept[np.sort(first)]
 
 
+def fronts(f: np.ndarray, feasible: np.ndarray, generation: np.ndarray,
+           generations: int) -> list[np.ndarray]:  # fmt: skip
+    """The front after each generation (:func:`non_dominated` of every feasible design up
+    to it), computed incrementally: the non-dominated set of the previous front and that
+    generation's designs is the same set, in the same row order."""
+    out = []
+    front_idx = np.array([], dtype=int)
+    for gen in range(generations):
+        mask = np.zeros(len(f), dtype=bool)
+        mask[front_idx] = True
+        mask |= feasible & (generation == gen)
+        front_idx = non_dominated(f, mask)
+        out.append(front_idx)
+    return out
+
+
 def hypervolumes(f: np.ndarray, feasible: np.ndarray, generation: np.ndarray,
-                 generations: int) -> list[float]:  # fmt: skip
+                 generations: int,
+                 by_generation: list[np.ndarray] | None = None) -> list[float]:  # fmt: skip
     """Hypervolume of the front after each generation (pymoo's HV).
 
     Objectives are normalised by the range of the feasible designs of the whole run, and
     the reference point is 1.1 in each (10 % beyond the worst feasible value), so the
-    numbers of one run compare with each other: 0 with no feasible design yet. The front
-    after a generation is the non-dominated set of the previous front and that
-    generation's designs (the same set as of all designs so far).
+    numbers of one run compare with each other: 0 with no feasible design yet.
+    ``by_generation``: the fronts of :func:`fronts`, if already computed.
     """
     from pymoo.indicators.hv import HV
 
@@ -49,18 +65,10 @@ def hypervolumes(f: np.ndarray, feasible: np.ndarray, generation: np.ndarray,
     lo, hi = fo.min(axis=0), fo.max(axis=0)
     span = np.where(hi > lo, hi - lo, 1.0)
     indicator = HV(ref_point=np.full(f.shape[1], 1.1))
-    out = []
-    front_idx = np.array([], dtype=int)
-    for gen in range(generations):
-        mask = np.zeros(len(f), dtype=bool)
-        mask[front_idx] = True
-        mask |= feasible & (generation == gen)
-        if not np.any(mask):
-            out.append(0.0)
-            continue
-        front_idx = non_dominated(f, mask)
-        out.append(float(indicator((f[front_idx] - lo) / span)))
-    return out
+    if by_generation is None:
+        by_generation = fronts(f, feasible, generation, generations)
+    return [float(indicator((f[idx] - lo) / span)) if idx.size else 0.0
+            for idx in by_generation]
 
 
 @dataclass(repr=False)

@@ -27,6 +27,11 @@ from railhunt.studies.tasks import TaskEngine
 class StudyRun:
     """One study's results file, cluster and progress, for one or more batches of points.
 
+    The scheduler is joined and the results file's folder checked before anything is
+    created: a wrong address or folder leaves no file behind. Use it as a context manager;
+    leaving it closes the file (sorted by point when :attr:`complete` was set) and the
+    cluster it started.
+
     Parameters
     ----------
     meta : dict
@@ -39,11 +44,6 @@ class StudyRun:
         Points of the whole study (every batch).
     warm_up : callable, optional
         Compiles the tasks' code in this process before a local cluster starts.
-
-    The scheduler is joined and the results file's folder checked before anything is
-    created: a wrong address or folder leaves no file behind. Use it as a context manager;
-    leaving it closes the file (sorted by point when :attr:`complete` was set) and the
-    cluster it started.
     """
 
     def __init__(self, meta: dict[str, Any], options: StudyOptions, *, label: str, total: int,

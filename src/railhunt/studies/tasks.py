@@ -44,6 +44,10 @@ PROBE_SECONDS = 0.05
 #: Estimated cost (s) of starting a local cluster and loading its workers' code: below it,
 #: a study's remaining points run in this process.
 CLUSTER_START_S = 3.0
+#: Estimated cost (s) of a new worker loading the compiled model code (numba's cache) for a
+#: vehicle study, on top of :data:`CLUSTER_START_S`: measured 15-20 s on the 2-core
+#: machine (a 24-point sweep took 27 s on 2 fresh workers, 7 s in one process).
+WORKER_CODE_S = 15.0
 #: Tasks per worker a study is split into at least (when its points allow): the last
 #: tasks to finish then keep every worker busy until the end.
 TASKS_PER_WORKER = 4
@@ -64,6 +68,18 @@ def chunk_size(seconds_per_point: float, left: int, workers: int,
     if workers > 1:
         per_task = min(per_task, max(1, math.ceil(left / (TASKS_PER_WORKER * workers))))
     return min(per_task, max(1, left))
+
+
+def _interrupted(exc: BaseException | None) -> bool:
+    """Whether ``exc`` stands for a Ctrl-C (a KeyboardInterrupt in its chain: numba
+    reports one that arrives in compiled code as a SystemError)."""
+    seen = set()
+    while exc is not None and id(exc) not in seen:
+        if isinstance(exc, KeyboardInterrupt):
+            return True
+        seen.add(id(exc))
+        exc = exc.__cause__ or exc.__context__
+    return False
 
 
 def unimportable_main() -> str | None:
@@ -220,7 +236,8 @@ class TaskEngine:
 
         n = check_workers(self.options.workers)
         estimate = (self.seconds_per_point or 0.0) * self.remaining()
-        if n == 1 or estimate < CLUSTER_START_S:
+        start_cost = CLUSTER_START_S + (WORKER_CODE_S if self.warm_up is not None else 0.0)
+        if n == 1 or estimate < start_cost:
             self.in_process = True
             return
         why = unimportable_main()
@@ -234,9 +251,7 @@ class TaskEngine:
             try:
                 self.warm_up()
             except Exception as exc:
-                from railhunt.studies.execute import interrupted
-
-                if interrupted(exc):  # Ctrl-C inside compiled code
+                if _interrupted(exc):  # Ctrl-C inside compiled code
                     raise KeyboardInterrupt from exc
                 raise
         self.in_process = False
@@ -274,7 +289,20 @@ class TaskEngine:
             i += k
         if i == len(items):
             return []
-        client = self.client if self.client is not None else background.client()
+        client = self.client
+        if client is None:
+            try:
+                client = background.client()
+            except Exception as exc:  # noqa: BLE001 - the study can still finish here
+                text = " ".join(str(exc).split())[:200]
+                self.note = (f"railhunt: note: the local cluster did not start "
+                             f"({type(exc).__name__}: {text}); the study goes on in this "
+                             "process")  # fmt: skip
+                print(self.note, file=sys.stderr, flush=True)
+                self.in_process = True
+                self.close()
+                self._run_here(task, items[i:], sink)
+                return []
         return self._distribute(client, task, items[i:], sink)
 
     def _distribute(self, client: Any, task: Callable[[Any], dict[str, Any]],

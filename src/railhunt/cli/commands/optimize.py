@@ -18,7 +18,7 @@ from railhunt.cli.factors import (
     output_options_from,
 )
 from railhunt.cli.options import build_vehicle, vehicle_options
-from railhunt.cli.output import fmt, json_safe, show_progress, stdout_console, traced
+from railhunt.cli.output import fmt, json_safe, stdout_console, traced
 from railhunt.cli.study import (
     STUDY_RULES,
     announce_study,
@@ -27,6 +27,7 @@ from railhunt.cli.study import (
     running_study,
     scheduler_client,
     study_options,
+    study_run,
 )
 
 _HELP = """\
@@ -101,9 +102,9 @@ def optimize_command(ctx, names, froms, tos, tolerances, objectives, constraints
             announce_study(vehicle, corners, vehicle_outputs(columns), workers, scheduler,
                            what="designs")  # fmt: skip
         result = optimize(vehicle, factors, objectives, constraints, population=population,
-                          generations=generations, seed=seed, ties=ties, out=out,
-                          resume=resume, overwrite=overwrite, client=client, workers=workers,
-                          progress=show_progress(), output_options=options)  # fmt: skip
+                          generations=generations, seed=seed, ties=ties,
+                          output_options=options,
+                          run=study_run(out, resume, overwrite, workers, client))  # fmt: skip
     if png is not None:
         result.figure(png)
     if as_json:

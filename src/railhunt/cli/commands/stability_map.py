@@ -21,7 +21,6 @@ from railhunt.cli.output import (
     command_record,
     fmt,
     json_safe,
-    show_progress,
     stdout_console,
     traced,
 )
@@ -36,6 +35,7 @@ from railhunt.cli.study import (
     running_study,
     scheduler_client,
     study_options,
+    study_run,
 )
 from railhunt.verdicts import verdict_help
 
@@ -142,9 +142,9 @@ def stability_map_command(radii: list[float], cant_mm: float | None,
     with running_study(out, points="radii"), \
             scheduler_client(scheduler, connect_timeout) as client:  # fmt: skip
         result = stability_map(vehicle, radii, cant, cant_deficiency=deficiency,
-                               outputs=chosen, out=out, resume=resume, overwrite=overwrite,
-                               client=client, workers=workers,
-                               progress=show_progress())  # fmt: skip
+                               outputs=chosen,
+                               run=study_run(out, resume, overwrite, workers,
+                                             client))  # fmt: skip
     if csv_file is not None:
         with user_input("cannot write --csv: "):
             csv_file.write_text(result.to_csv_text(), encoding="utf-8")

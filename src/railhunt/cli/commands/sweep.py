@@ -22,6 +22,7 @@ from railhunt.cli.study import (
     running_study,
     scheduler_client,
     study_options,
+    study_run,
 )
 
 _SWEEP_HELP = """\
@@ -238,9 +239,9 @@ def sweep_command(names, table1, per_section, froms, tos, nums, spacing, design,
         result = sweep(vehicle, parameters, chosen, design=design, samples=samples,
                        seed=seed, ties=ties, frequency_speed_kmh=frequency_kmh,
                        frequency_amplitude=None if amplitude_mm is None
-                       else amplitude_mm * 1e-3, out=out,
-                       resume=resume, overwrite=overwrite, client=client,
-                       workers=workers, progress=progress, output_options=options)  # fmt: skip
+                       else amplitude_mm * 1e-3, output_options=options,
+                       run=study_run(out, resume, overwrite, workers, client,
+                                     progress))  # fmt: skip
     if as_json:
         click.echo(json.dumps(json_safe(traced({
             "file": str(out), "points": result.meta["points"], "computed": result.computed,
