@@ -3,6 +3,12 @@ and its Jacobian at random states and speeds, and the linear critical speed.
 
 Run ``python benchmarks/fingerprint.py`` before and after a restructuring: every line must
 stay the same (the hashes are of the raw float64 bytes).
+
+The linear critical speed's last digits depend on which kernels OpenBLAS runs the
+eigenvalue problem with: the stored value, 441.31801778747035 km/h, is that of the CPU's own
+kernels; ``OPENBLAS_CORETYPE=Haswell`` gives 441.3180177874659 km/h and ``Sandybridge``
+441.31801778745836 km/h on the same arrays, right-hand side and Jacobian (whose hashes do
+not change). Compare on one machine with one setting.
 """
 
 from __future__ import annotations
