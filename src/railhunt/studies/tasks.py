@@ -45,12 +45,12 @@ PROBE_SECONDS = 0.05
 #: a study's remaining points run in this process.
 CLUSTER_START_S = 3.0
 #: Estimated cost (s) of a new worker loading the compiled model code (numba's cache) for a
-#: vehicle study, on top of :data:`CLUSTER_START_S`: a fresh worker's first point of the
-#: paper's vehicle takes 1.3-1.6 s against 0.7 s for the next ones (2-core machine, the
-#: workers sharing the parent's numba cache folder), and a 24-point sweep (6 s of
-#: evaluations) still took 6.6-6.8 s on 2 new workers, so about 7 s of evaluations are
-#: needed before 2 workers gain.
-WORKER_CODE_S = 4.0
+#: vehicle study, on top of :data:`CLUSTER_START_S`, and of the local cluster's other
+#: overheads: a fresh worker's first point of the paper's vehicle takes 1.3-1.6 s against
+#: 0.7 s for the next ones (2-core machine, the workers sharing the parent's numba cache
+#: folder), but sweeps of 24 and 48 points (6 s and 14-15 s of evaluations) still took as
+#: long or longer on 2 new workers as in one process (0.91x and 0.92-1.00x).
+WORKER_CODE_S = 15.0
 #: Tasks per worker a study is split into at least (when its points allow): the last
 #: tasks to finish then keep every worker busy until the end.
 TASKS_PER_WORKER = 4
