@@ -28,3 +28,16 @@ def test_any_source_change_changes_the_folder(tmp_path):
     model = copy / "model.py"
     model.write_text(model.read_text() + "\n# an edit\n")
     assert _cache.source_hash(copy) != before
+
+
+def test_a_worker_process_shares_its_parents_folder():
+    """A process started from one that imported railhunt (a local Dask worker) inherits
+    NUMBA_CACHE_DIR naming the folder: it must load that cache, not nest a cold one in it."""
+    import os
+    import subprocess
+    import sys
+
+    env = dict(os.environ, NUMBA_CACHE_DIR=railhunt.NUMBA_CACHE)
+    child = subprocess.run([sys.executable, "-c", "import railhunt; print(railhunt.NUMBA_CACHE)"],
+                           env=env, capture_output=True, text=True, check=True)  # fmt: skip
+    assert child.stdout.strip() == railhunt.NUMBA_CACHE

@@ -10,7 +10,10 @@ package's sources: any change of any source gives a fresh cache.
 
 The folder is ``$NUMBA_CACHE_DIR/railhunt-<hash>`` when ``NUMBA_CACHE_DIR`` is set, else
 ``$XDG_CACHE_HOME/railhunt/numba-<hash>`` (default ``~/.cache``); if that cannot be
-created, numba's default (next to the sources) is kept.
+created, numba's default (next to the sources) is kept. A ``NUMBA_CACHE_DIR`` that already
+names this folder (inherited from a process that imported railhunt, as local Dask workers
+inherit it) is kept as it is, so worker processes load the parent's compiled code instead
+of compiling their own into a nested folder.
 """
 
 from __future__ import annotations
@@ -38,7 +41,9 @@ def configure() -> str | None:
     """Point numba's cache at the folder for these sources; returns it (None if unchanged)."""
     tag = source_hash()
     user = os.environ.get("NUMBA_CACHE_DIR")
-    if user:
+    if user and Path(user).name in (f"railhunt-{tag}", f"numba-{tag}"):
+        folder = Path(user)  # set by a parent process (a Dask worker): the same cache
+    elif user:
         folder = Path(user) / f"railhunt-{tag}"
     else:
         base = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache")

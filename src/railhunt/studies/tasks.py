@@ -45,8 +45,11 @@ PROBE_SECONDS = 0.05
 #: a study's remaining points run in this process.
 CLUSTER_START_S = 3.0
 #: Estimated cost (s) of a new worker loading the compiled model code (numba's cache) for a
-#: vehicle study, on top of :data:`CLUSTER_START_S`: measured 15-20 s on the 2-core
-#: machine (a 24-point sweep took 27 s on 2 fresh workers, 7 s in one process).
+#: vehicle study, on top of :data:`CLUSTER_START_S`, and of the local cluster's other
+#: overheads: a fresh worker's first point of the paper's vehicle takes 1.3-1.6 s against
+#: 0.7 s for the next ones (2-core machine, the workers sharing the parent's numba cache
+#: folder), but sweeps of 24 and 48 points (6 s and 14-15 s of evaluations) still took as
+#: long or longer on 2 new workers as in one process (0.91x and 0.92-1.00x).
 WORKER_CODE_S = 15.0
 #: Tasks per worker a study is split into at least (when its points allow): the last
 #: tasks to finish then keep every worker busy until the end.
