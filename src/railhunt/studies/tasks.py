@@ -73,18 +73,6 @@ def chunk_size(seconds_per_point: float, left: int, workers: int,
     return min(per_task, max(1, left))
 
 
-def _interrupted(exc: BaseException | None) -> bool:
-    """Whether ``exc`` stands for a Ctrl-C (a KeyboardInterrupt in its chain: numba
-    reports one that arrives in compiled code as a SystemError)."""
-    seen = set()
-    while exc is not None and id(exc) not in seen:
-        if isinstance(exc, KeyboardInterrupt):
-            return True
-        seen.add(id(exc))
-        exc = exc.__cause__ or exc.__context__
-    return False
-
-
 def unimportable_main() -> str | None:
     """Why worker processes cannot import this program's main module again (None when
     they can): a script read from standard input (``python - < study.py``) has no file
@@ -254,7 +242,9 @@ class TaskEngine:
             try:
                 self.warm_up()
             except Exception as exc:
-                if _interrupted(exc):  # Ctrl-C inside compiled code
+                from railhunt.studies.execute import interrupted
+
+                if interrupted(exc):  # Ctrl-C inside compiled code
                     raise KeyboardInterrupt from exc
                 raise
         self.in_process = False
