@@ -49,15 +49,22 @@ _DEN_MIN = 0.025
 
 
 @njit(cache=True)
-def uses_per_point(wr: np.ndarray) -> bool:
-    """Whether the wheel/rail vector carries per-point contact mechanics."""
+def mechanics_marker(wr: np.ndarray) -> float:
+    """The contact-mechanics marker after the wheel/rail vector's contact table (e.g.
+    ``PER_POINT``, ``TWO_POINT``), or -1 when there is no table or nothing after it."""
     if wr.shape[0] <= WR.TABLE:
-        return False
+        return -1.0
     n = int(wr[WR.TABLE])
     if n < 2:
-        return False
+        return -1.0
     p = WR.TABLE + 3 + 4 * n
-    return wr.shape[0] > p and wr[p] == PER_POINT
+    return wr[p] if wr.shape[0] > p else -1.0
+
+
+@njit(cache=True)
+def uses_per_point(wr: np.ndarray) -> bool:
+    """Whether the wheel/rail vector carries per-point contact mechanics."""
+    return mechanics_marker(wr) == PER_POINT
 
 
 @njit(cache=True)

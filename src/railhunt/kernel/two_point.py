@@ -56,7 +56,7 @@ from railhunt.kernel.layout import (
     PatchColumn,
     TwoPointHeader,
 )
-from railhunt.kernel.point_contact import normal_force_ratio
+from railhunt.kernel.point_contact import mechanics_marker, normal_force_ratio
 
 __all__ = ["two_point_wheelset_contact", "uses_two_point"]
 
@@ -66,13 +66,7 @@ _NODE = 4 * N_PATCH_COLUMNS  # values per grid node: two wheels, two slots each
 @njit(cache=True)
 def uses_two_point(wr: np.ndarray) -> bool:
     """Whether the wheel/rail vector carries the two-point contact table."""
-    if wr.shape[0] <= WR.TABLE:
-        return False
-    n = int(wr[WR.TABLE])
-    if n < 2:
-        return False
-    p = WR.TABLE + 3 + 4 * n
-    return wr.shape[0] > p and wr[p] == TWO_POINT
+    return mechanics_marker(wr) == TWO_POINT
 
 
 @njit(cache=True)
