@@ -173,9 +173,11 @@ class _Side:
         return z_track - z_rail
 
 
-def _refine(g: np.ndarray) -> tuple[int, float, float]:
-    """Index of the minimum, its fractional offset (parabola) and the refined minimum."""
-    i = int(np.argmin(g))
+def _refine(g: np.ndarray, i: int | None = None) -> tuple[int, float, float]:
+    """Index of the minimum (or of the valley at ``i``), its fractional offset (parabola)
+    and the refined value."""
+    if i is None:
+        i = int(np.argmin(g))
     if 0 < i < g.size - 1:
         a, b, c = g[i - 1], g[i], g[i + 1]
         den = a - 2.0 * b + c

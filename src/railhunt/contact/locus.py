@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from railhunt.contact.geometry import _check_fit, _gauge_point
+from railhunt.contact.geometry import _check_fit, _gauge_point, _refine
 from railhunt.contact.profiles import Profile, ProfileError
 
 __all__ = ["PatchSearch", "WheelLocus", "distinct", "ellipse_constants", "hertz_per_newton",
@@ -89,20 +89,6 @@ class WheelLocus:
     def lowest(self, y: float, phi: float, psi: float) -> float:
         """The refined minimum of the gap function (m)."""
         return _refine(self.locus(y, phi, psi)[3])[2]
-
-
-def _refine(g: np.ndarray, i: int | None = None) -> tuple[int, float, float]:
-    """Index of the minimum (or of the valley at ``i``), its fractional offset (parabola)
-    and the refined value."""
-    if i is None:
-        i = int(np.argmin(g))
-    if 0 < i < g.size - 1:
-        a, b, c = g[i - 1], g[i], g[i + 1]
-        den = a - 2.0 * b + c
-        if den > 0:
-            off = 0.5 * (a - c) / den
-            return i, off, b - 0.25 * (a - c) * off
-    return i, 0.0, g[i]
 
 
 def valleys(gap: np.ndarray, u: np.ndarray, depth: float, separation: float) -> list[int]:
