@@ -178,7 +178,7 @@ def test_workers_are_capped_at_the_cores(tmp_path, monkeypatch):
     class Started(Exception):
         pass
 
-    def fake_local_client(n):
+    def fake_local_client(n, *args):
         started.append(n)
         raise Started
 
@@ -187,6 +187,7 @@ def test_workers_are_capped_at_the_cores(tmp_path, monkeypatch):
     # time only the first point, so that the second goes to the (fake) cluster
     monkeypatch.setattr(tasks, "CLUSTER_START_S", 0.0)
     monkeypatch.setattr(tasks, "WORKER_CODE_S", 0.0)
+    monkeypatch.setattr(tasks, "FORK_START_S", 0.0)
     monkeypatch.setattr(tasks.TaskEngine, "_probe", _probe_one)
     if default_workers() == 1:
         pytest.skip("one core: the points run in this process")

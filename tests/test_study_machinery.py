@@ -19,6 +19,7 @@ import railhunt
 from railhunt import StudyOptions, sensitivity, sweep
 from railhunt.studies import store as store_module
 from railhunt.studies import tasks
+from railhunt.studies.execute import default_workers
 from railhunt.studies.tasks import chunk_size
 
 pytest.importorskip("SALib")
@@ -100,7 +101,7 @@ def test_results_are_appended_per_task_not_per_point(tmp_path, monkeypatch):
 def test_cheap_points_on_several_workers_start_no_cluster(monkeypatch):
     import railhunt.studies.execute as execute
 
-    def no_cluster(n):
+    def no_cluster(n, *args):
         raise AssertionError("a cluster was started for a study of milliseconds")
 
     monkeypatch.setattr(execute, "local_client", no_cluster)
@@ -150,19 +151,50 @@ def _script(out: Path, *, sleep: float, workers: int, task: float, samples: int,
 
 
 def test_a_program_read_from_standard_input_runs_in_process_with_one_line(tmp_path):
-    """``python - < study.py``: worker processes cannot import the program again (a local
-    cluster's start died with 'Nanny failed to start' and a traceback); the study runs in
-    this process and says so in one line."""
+    """``python - < study.py`` with spawned workers: they cannot import the program again
+    (a local cluster's start died with 'Nanny failed to start' and a traceback); the study
+    runs in this process and says so in one line."""
     code = _script(tmp_path / "stdin.csv", sleep=0.005, workers=2, task=0.5, samples=8,
                    setup="tasks.CLUSTER_START_S = 0.0  # as if workers cost nothing")
     done = subprocess.run([sys.executable, "-"], input=code, capture_output=True, text=True,
-                          timeout=300, cwd=tmp_path)  # fmt: skip
+                          timeout=300, cwd=tmp_path,
+                          env={**os.environ, "RAILHUNT_WORKER_START": "spawn"})  # fmt: skip
     assert done.returncode == 0, done.stderr
     assert done.stdout.split() == ["40", "0"]
     lines = [line for line in done.stderr.splitlines() if line.strip()]
     assert len(lines) == 1 and lines[0].startswith("railhunt: note:"), done.stderr
     assert "<stdin>" in lines[0] and "runs in this process" in lines[0]
     assert "Traceback" not in done.stderr
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="forked workers: Linux")
+def test_a_program_read_from_standard_input_runs_on_forked_workers(tmp_path):
+    """With forked workers (Linux) nothing is imported again: ``python - < study.py`` runs
+    on the workers, silently, and gives the same file as in one process."""
+    pids = tmp_path / "pids.txt"
+    setup = ("tasks.FORK_START_S = 0.0  # as if workers cost nothing\n"
+             "    import os\n"
+             "    real = slow\n"
+             "    def slow(**x):\n"
+             f"        open({str(pids)!r}, 'a').write(f'{{os.getpid()}}\\n')\n"
+             "        return real(**x)")  # fmt: skip
+    code = _script(tmp_path / "stdin.csv", sleep=0.005, workers=2, task=0.02, samples=8,
+                   setup=setup)  # fmt: skip
+    done = subprocess.run([sys.executable, "-"], input=code, capture_output=True, text=True,
+                          timeout=300, cwd=tmp_path,
+                          env={**os.environ, "RAILHUNT_WORKER_START": "fork"})  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split() == ["40", "0"]
+    assert not done.stderr.strip(), done.stderr
+    assert len(set(pids.read_text().split())) >= 2, "the points ran in more than one process"
+    (tmp_path / "one.py").write_text(_script(tmp_path / "one.csv", sleep=0.0, workers=1,
+                                             task=0.5, samples=8))  # fmt: skip
+    one = subprocess.run([sys.executable, "one.py"], capture_output=True, text=True,
+                         timeout=300, cwd=tmp_path)  # fmt: skip
+    assert one.returncode == 0, one.stderr
+    stdin_rows = railhunt.read_results(tmp_path / "stdin.csv").rows
+    one_rows = railhunt.read_results(tmp_path / "one.csv").rows
+    assert [r["y"] for r in stdin_rows] == [r["y"] for r in one_rows]
 
 
 def test_a_study_killed_in_the_middle_of_a_task_resumes_to_the_same_file(tmp_path):
@@ -214,11 +246,12 @@ def test_a_local_cluster_that_cannot_start_leaves_the_study_to_this_process(
         monkeypatch, capsys, tmp_path):  # fmt: skip
     import railhunt.studies.execute as execute
 
-    def broken(n):
+    def broken(n, *args):
         raise OSError("no free port")
 
     monkeypatch.setattr(execute, "local_client", broken)
     monkeypatch.setattr(tasks, "CLUSTER_START_S", 0.0)
+    monkeypatch.setattr(tasks, "FORK_START_S", 0.0)
 
     def slow(x1: float, x2: float, x3: float) -> dict[str, float]:
         time.sleep(0.005)
@@ -229,3 +262,34 @@ def test_a_local_cluster_that_cannot_start_leaves_the_study_to_this_process(
     assert r.study.computed == 40 and r.indices == reference.indices
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "the local cluster did not start (OSError: no free port)" in err[0]
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux") or default_workers() < 2,
+                    reason="forked workers: Linux, two cores")  # fmt: skip
+def test_a_vehicle_study_on_forked_workers_writes_the_same_file(tmp_path, monkeypatch):
+    """A vehicle study of 16 points or more forks its local workers before timing a point
+    (they copy this process's compiled code): its file is byte-identical to one process's,
+    and the points ran on the cluster."""
+    import numpy as np
+
+    started = []
+    real = tasks.BackgroundCluster.__init__
+
+    def spy(self, workers, prime=None, saturation=1.0):
+        started.append((workers, prime, saturation))
+        real(self, workers, prime, saturation)
+
+    monkeypatch.setattr(tasks.BackgroundCluster, "__init__", spy)
+    monkeypatch.setenv("RAILHUNT_WORKER_START", "fork")
+    vehicle = railhunt.Vehicle.paper2019()
+    values = {"C_d1": np.linspace(50e3, 600e3, 16)}
+    one = railhunt.sweep(vehicle, values, ["linear_critical_speed"], workers=1,
+                         out=tmp_path / "one.csv")  # fmt: skip
+    assert started == []
+    two = railhunt.sweep(vehicle, values, ["linear_critical_speed"], workers=2,
+                         out=tmp_path / "two.csv")  # fmt: skip
+    assert started == [(2, None, tasks.FORKED_SATURATION)]
+    assert two.computed == 16 and not two.lost_reasons
+    assert (tmp_path / "one.csv").read_bytes() == (tmp_path / "two.csv").read_bytes()
+    assert [r["linear_critical_speed_kmh"] for r in one.rows] == [
+        r["linear_critical_speed_kmh"] for r in two.rows]

@@ -20,7 +20,7 @@ from railhunt.kernel.integrators import rk4_step
 from railhunt.kernel.layout import DamperParam
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def flow(x0, horizon, n_steps, locate, v, s, samples):
     """State after ``horizon`` seconds: RK4 on a uniform grid, damper switchings located.
 

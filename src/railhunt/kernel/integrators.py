@@ -95,7 +95,7 @@ def rk4_step(t, x, h, v, s, k1, k2, k3, k4, tmp, out):
         out[i] = x[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def rk4(x0, t0, dt, n_steps, stride, y_limit, v, s):
     """Classical fixed-step fourth-order Runge-Kutta.
 
@@ -167,7 +167,7 @@ _E1, _E3, _E4, _E5, _E6, _E7 = (
 )  # fmt: skip
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def dopri5(x0, t0, t_end, dt_out, rtol, atol, h0, h_max, max_steps, y_limit, v, s):
     """Adaptive Dormand-Prince 5(4) with PI step-size control and dense output.
 

@@ -18,6 +18,7 @@ import os
 import signal
 import socket
 import struct
+import sys
 import time
 import warnings
 from collections.abc import Callable, Iterator, Sequence
@@ -96,15 +97,46 @@ def capped_workers(workers: int | None) -> str | None:
             "each point keeps one core busy, so more processes would only share them")
 
 
-def local_cluster(workers: int) -> Any:
+#: Environment variable that chooses how a local cluster's worker processes start
+#: (:func:`worker_start_method`).
+START_METHOD_ENV = "RAILHUNT_WORKER_START"
+_START_METHODS = ("fork", "spawn", "forkserver")
+
+
+def worker_start_method() -> str:
+    """How a local cluster's worker processes start: ``"fork"`` on Linux, else ``"spawn"``.
+
+    A forked worker is a copy of this process: it has railhunt imported and every compiled
+    function this process has loaded, so it starts in about 0.1 s and evaluates its first
+    point as fast as this process does (a spawned worker imports railhunt and loads the
+    compiled model from numba's cache first: about 1 s to start and 1.3-1.6 s for its first
+    point of the paper's vehicle, on 2 cores). A study forks its workers while no other
+    thread of this process runs Python code. ``RAILHUNT_WORKER_START=spawn`` (or
+    ``forkserver``) chooses another method; macOS and Windows always spawn.
+    """
+    value = os.environ.get(START_METHOD_ENV, "").strip().lower()
+    if value:
+        if value not in _START_METHODS:
+            raise ValueError(f"{START_METHOD_ENV} = {value!r} is invalid: must be one of "
+                             f"{', '.join(_START_METHODS)}")  # fmt: skip
+        if value != "spawn" and not sys.platform.startswith("linux"):
+            return "spawn"
+        return value
+    return "fork" if sys.platform.startswith("linux") else "spawn"
+
+
+def local_cluster(workers: int, saturation: float = 1.0) -> Any:
     """A ``dask.distributed.LocalCluster`` of ``workers`` single-threaded processes.
 
     Without a dashboard; its HTTP server takes any free port (no warning when 8787, the
-    default, is taken by another cluster). Three settings suit studies of many long points:
+    default, is taken by another cluster). The workers start by
+    :func:`worker_start_method`. Three settings suit studies of many long points:
 
     - a worker holds only the task it is running (``worker-saturation`` 1.0, Dask's
       default 1.1 sends a second one to queue behind it): a worker that dies takes only
-      its own point with it, and a free worker never waits behind a slow point;
+      its own point with it, and a free worker never waits behind a slow point
+      (``saturation`` 2.0 gives each worker its next task beside the running one, which
+      it then starts without a round trip to the scheduler: a study's forked cluster);
     - every worker process, and each one the nanny restarts, ignores SIGINT (see
       :func:`dask_setup`);
     - Dask's own log messages below CRITICAL are silenced: railhunt reports what a study
@@ -115,7 +147,9 @@ def local_cluster(workers: int) -> Any:
     from distributed import LocalCluster
 
     with warnings.catch_warnings(), \
-            dask.config.set({"distributed.scheduler.worker-saturation": 1.0}):  # fmt: skip
+            dask.config.set({"distributed.scheduler.worker-saturation": saturation,
+                             "distributed.worker.multiprocessing-method":
+                                 worker_start_method()}):  # fmt: skip
         warnings.filterwarnings("ignore", message="Port .* is already in use")
         return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                             dashboard_address=None, silence_logs=logging.CRITICAL,
@@ -133,7 +167,7 @@ def dask_setup(worker: Any) -> None:
 
 
 @contextmanager
-def local_client(workers: int) -> Iterator[Any]:
+def local_client(workers: int, saturation: float = 1.0) -> Iterator[Any]:
     """A ``dask.distributed.Client`` on a new :func:`local_cluster`, closed on exit.
 
     Closing does not raise: after workers died and were restarted, Dask's cluster can fail
@@ -142,7 +176,7 @@ def local_client(workers: int) -> Iterator[Any]:
     """
     from distributed import Client
 
-    cluster = local_cluster(workers)
+    cluster = local_cluster(workers, saturation)
     try:
         client = Client(cluster)
     except BaseException:

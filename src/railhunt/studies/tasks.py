@@ -14,10 +14,15 @@ linear critical speed about 10 ms, a nonlinear search a few tenths of a second. 
    whose remaining points are estimated to cost less than starting a local cluster
    (:data:`CLUSTER_START_S`), or a program read from standard input (``python - <
    study.py``), which worker processes cannot import again (one line says so).
-   Otherwise a local cluster is started in the background while this process goes on
-   evaluating points; once its workers are up (and have evaluated one point each, which
-   loads their compiled code), the remaining tasks go to them. On a cluster that is given
-   (``client``, ``scheduler``) the tasks go there after the first points.
+   On Linux the local cluster's workers are forked
+   (:func:`railhunt.studies.execute.worker_start_method`): copies of this process with its
+   compiled code, up in about 0.3 s (:data:`FORK_START_S`); a vehicle study of
+   :data:`EARLY_FORK_POINTS` points or more forks them before any point is timed, and its
+   first tasks (one point per worker) are timed on the workers. Spawned workers are
+   started in the background while this process goes on evaluating points; once they are
+   up (and have evaluated one point each, which loads their compiled code), the remaining
+   tasks go to them. On a cluster that is given (``client``, ``scheduler``) the tasks go
+   there after the first points.
 
 A task runs the same function on the same points wherever it runs, so the numbers are the
 same in this process, on a local cluster and on a remote one.
@@ -36,7 +41,7 @@ import time
 from collections.abc import Callable, Sequence
 from typing import Any
 
-__all__ = ["CLUSTER_START_S", "PROBE_SECONDS", "BackgroundCluster", "TaskEngine",
+__all__ = ["CLUSTER_START_S", "FORK_START_S", "PROBE_SECONDS", "BackgroundCluster", "TaskEngine",
            "chunk_size", "run_chunk", "unimportable_main"]  # fmt: skip
 
 #: Evaluation time (s) of the first points timed in this process (at least two points).
@@ -51,6 +56,22 @@ CLUSTER_START_S = 3.0
 #: folder), but sweeps of 24 and 48 points (6 s and 14-15 s of evaluations) still took as
 #: long or longer on 2 new workers as in one process (0.91x and 0.92-1.00x).
 WORKER_CODE_S = 15.0
+#: Estimated cost (s) of a local cluster of forked workers (Linux,
+#: :func:`railhunt.studies.execute.worker_start_method`): it starts in about 0.1 s and its
+#: workers have this process's compiled code; each round of tasks costs some 50 ms more
+#: than in this process (2-core machine). A study goes to forked workers when the time they
+#: save, ``(1 - 1/workers)`` of its remaining points' cost, is larger.
+FORK_START_S = 0.3
+#: A vehicle study (one that loads compiled model code) with at least this many points
+#: left forks its workers before timing any point, when forked workers are available: its
+#: points cost 10 ms (a linear critical speed) to seconds, so that the workers pay off, and
+#: the first points are then timed while the workers compute too.
+EARLY_FORK_POINTS = 16
+#: Tasks a worker of a forked cluster holds: the one it runs and the next, which it starts
+#: without waiting for the scheduler (``worker-saturation``; 1.0, one task, delayed each
+#: next task by 0.1-0.3 s on 2 cores, and a 24-point sweep ran 1.27-1.38 x faster than in
+#: one process against 1.44-1.58 x with 2.0).
+FORKED_SATURATION = 2.0
 #: Tasks per worker a study is split into at least (when its points allow): the last
 #: tasks to finish then keep every worker busy until the end.
 TASKS_PER_WORKER = 4
@@ -61,6 +82,14 @@ Sink = Callable[[list[dict[str, Any]]], None]
 def run_chunk(items: Sequence[Any], task: Callable[[Any], dict[str, Any]]) -> list[dict[str, Any]]:
     """One task: ``task`` on each item, the rows in order (picklable, for Dask)."""
     return [task(item) for item in items]
+
+
+def timed_chunk(items: Sequence[Any], task: Callable[[Any], dict[str, Any]]
+                ) -> tuple[list[dict[str, Any]], float]:  # fmt: skip
+    """:func:`run_chunk` and its evaluation time (s), measured where it runs."""
+    t0 = time.perf_counter()
+    rows = run_chunk(items, task)
+    return rows, time.perf_counter() - t0
 
 
 def chunk_size(seconds_per_point: float, left: int, workers: int,
@@ -96,8 +125,10 @@ class BackgroundCluster:
     which loads the compiled code it needs; only then is the cluster :attr:`ready`.
     """
 
-    def __init__(self, workers: int, prime: Callable[[], object] | None = None) -> None:
+    def __init__(self, workers: int, prime: Callable[[], object] | None = None,
+                 saturation: float = 1.0) -> None:  # fmt: skip
         self.workers = workers
+        self.saturation = saturation
         self._prime = prime
         self._cm: Any = None
         self._client: Any = None
@@ -113,7 +144,7 @@ class BackgroundCluster:
         try:
             if hasattr(signal, "pthread_sigmask"):
                 signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
-            cm = execute.local_client(self.workers)
+            cm = execute.local_client(self.workers, self.saturation)
             self._client = cm.__enter__()
             self._cm = cm
             if self._prime is not None:
@@ -123,6 +154,11 @@ class BackgroundCluster:
         finally:
             self._done.set()
 
+    def wait(self) -> None:
+        """Wait until the cluster is up or its start failed."""
+        while not self._done.wait(0.1):
+            pass
+
     @property
     def ready(self) -> bool:
         """Whether the cluster is up (or failed to start: :meth:`client` says why)."""
@@ -130,16 +166,14 @@ class BackgroundCluster:
 
     def client(self) -> Any:
         """The cluster's client, once it is up (the start's error, if it failed)."""
-        while not self._done.wait(0.1):
-            pass
+        self.wait()
         if self._error is not None:
             raise self._error
         return self._client
 
     def close(self) -> None:
         """Close the cluster (after its start finished)."""
-        while not self._done.wait(0.1):
-            pass
+        self.wait()
         if self._cm is not None:
             cm, self._cm = self._cm, None
             cm.__exit__(None, None, None)
@@ -172,6 +206,7 @@ class TaskEngine:
         self.background: BackgroundCluster | None = None
         self.in_process: bool | None = None if client is None else False
         self.note: str | None = None
+        self.forked = False  # the tasks go to a forked local cluster (:meth:`_share`)
         self.evaluation_s = 0.0  # evaluation time of the points run in this process
 
     # ------------------------------------------------------------------ in this process
@@ -223,32 +258,64 @@ class TaskEngine:
     # ------------------------------------------------------------------ where
 
     def _decide(self, task: Callable[[Any], dict[str, Any]], first: Any) -> None:
-        from railhunt.studies.execute import check_workers
+        from railhunt.studies.execute import check_workers, worker_start_method
 
         n = check_workers(self.options.workers)
         estimate = (self.seconds_per_point or 0.0) * self.remaining()
-        start_cost = CLUSTER_START_S + (WORKER_CODE_S if self.warm_up is not None else 0.0)
-        if n == 1 or estimate < start_cost:
+        forked = worker_start_method() == "fork"
+        if forked:  # the time the workers save against their start
+            slower_here = estimate * (1.0 - 1.0 / n) > FORK_START_S
+        else:
+            slower_here = estimate >= CLUSTER_START_S + (
+                WORKER_CODE_S if self.warm_up is not None else 0.0)
+        if n == 1 or not slower_here:
             self.in_process = True
             return
-        why = unimportable_main()
+        why = None if forked else unimportable_main()
         if why is not None:
             self.note = (f"railhunt: note: {why}: the study runs in this process; save the "
                          f"program to a file to run it on {n} worker processes")  # fmt: skip
             print(self.note, file=sys.stderr, flush=True)
             self.in_process = True
             return
-        if self.warm_up is not None:
-            try:
-                self.warm_up()
-            except Exception as exc:
-                from railhunt.studies.execute import interrupted
-
-                if interrupted(exc):  # Ctrl-C inside compiled code
-                    raise KeyboardInterrupt from exc
-                raise
+        self._warm_up()
         self.in_process = False
-        self.background = BackgroundCluster(n, functools.partial(run_chunk, [first], task))
+        if forked:
+            self._fork(n)
+        else:
+            self.background = BackgroundCluster(n, functools.partial(run_chunk, [first],
+                                                                     task))  # fmt: skip
+
+    def _warm_up(self) -> None:
+        if self.warm_up is None:
+            return
+        try:
+            self.warm_up()
+        except Exception as exc:
+            from railhunt.studies.execute import interrupted
+
+            if interrupted(exc):  # Ctrl-C inside compiled code
+                raise KeyboardInterrupt from exc
+            raise
+
+    def _fork(self, n: int) -> None:
+        """Start a local cluster of ``n - 1`` forked workers; this process is the n-th.
+
+        Forked workers copy this process, compiled code included (nothing to prime). This
+        thread waits while they start, so that it holds no lock they would inherit held (a
+        fork copies only the thread that forks)."""
+        self.forked = True
+        self.background = BackgroundCluster(n, saturation=FORKED_SATURATION)
+        self.background.wait()
+
+    def _fork_early(self) -> bool:
+        """Whether to fork the workers before any point is timed (:data:`EARLY_FORK_POINTS`)."""
+        from railhunt.studies.execute import check_workers, worker_start_method
+
+        return (self.client is None and self.warm_up is not None
+                and check_workers(self.options.workers) > 1
+                and self.remaining() >= EARLY_FORK_POINTS
+                and worker_start_method() == "fork")  # fmt: skip
 
     def _workers(self, client: Any) -> int:
         try:
@@ -265,6 +332,14 @@ class TaskEngine:
         items = list(items)
         if not items:
             return []
+        if self.in_process is None and self.seconds_per_point is None and self._fork_early():
+            from railhunt.studies.execute import check_workers
+
+            self._warm_up()
+            self.in_process = False
+            self._fork(check_workers(self.options.workers))
+        if self.forked:
+            return self._share(task, items, sink)
         i = 0
         if self.seconds_per_point is None:
             i = self._probe(task, items, sink)
@@ -272,6 +347,8 @@ class TaskEngine:
             return []
         if self.in_process is None:
             self._decide(task, items[0])
+        if self.forked:
+            return self._share(task, items[i:], sink)
         if self.in_process:
             self._run_here(task, items[i:], sink)
             return []
@@ -287,13 +364,7 @@ class TaskEngine:
             try:
                 client = background.client()
             except Exception as exc:  # noqa: BLE001 - the study can still finish here
-                text = " ".join(str(exc).split())[:200]
-                self.note = (f"railhunt: note: the local cluster did not start "
-                             f"({type(exc).__name__}: {text}); the study goes on in this "
-                             "process")  # fmt: skip
-                print(self.note, file=sys.stderr, flush=True)
-                self.in_process = True
-                self.close()
+                self._cluster_failed(exc)
                 self._run_here(task, items[i:], sink)
                 return []
         return self._distribute(client, task, items[i:], sink)
@@ -307,6 +378,64 @@ class TaskEngine:
         lost = run_tasks(functools.partial(run_chunk, task=task), groups, sink,
                          client=client)  # type: ignore[arg-type]
         return [(item, reason) for group, reason in lost for item in group]
+
+    def _share(self, task: Callable[[Any], dict[str, Any]], items: list[Any],
+               sink: Sink) -> list[tuple[Any, str]]:  # fmt: skip
+        """Evaluate ``items`` on a forked local cluster.
+
+        Until a point has been timed, the workers get one point per task, and the first
+        task back tells the cost of a point (timed on its worker); then the remaining
+        points are submitted at once, in tasks of about ``task_seconds``.
+        """
+        from distributed import wait
+
+        try:
+            client = self.background.client()
+        except Exception as exc:  # noqa: BLE001 - the study can still finish here
+            self._cluster_failed(exc)
+            self._run_here(task, items, sink)
+            return []
+        workers = self._workers(client)
+        pending = list(items)
+        inflight: dict[Any, list[Any]] = {}  # future -> its items
+        lost: list[tuple[Any, str]] = []
+
+        def submit() -> None:
+            while pending and (self.seconds_per_point is not None or len(inflight) < workers):
+                k = 1 if self.seconds_per_point is None else self._size(len(pending), workers)
+                chunk = pending[:k]
+                del pending[:k]
+                inflight[client.submit(timed_chunk, chunk, task, pure=False)] = chunk
+
+        try:
+            submit()
+            while inflight:
+                for future in wait(list(inflight), return_when="FIRST_COMPLETED").done:
+                    chunk = inflight.pop(future)
+                    try:
+                        rows, seconds = future.result()
+                    except Exception as exc:  # noqa: BLE001 - KilledWorker, cancelled, ...
+                        lost.extend((item, f"{type(exc).__name__}: {exc}") for item in chunk)
+                    else:
+                        if self.seconds_per_point is None and rows:
+                            self.seconds_per_point = seconds / len(rows)
+                        sink(rows)
+                    future.release()
+                submit()
+        except BaseException:
+            client.cancel(list(inflight))
+            raise
+        return lost
+
+    def _cluster_failed(self, exc: BaseException) -> None:
+        text = " ".join(str(exc).split())[:200]
+        self.note = (f"railhunt: note: the local cluster did not start "
+                     f"({type(exc).__name__}: {text}); the study goes on in this "
+                     "process")  # fmt: skip
+        print(self.note, file=sys.stderr, flush=True)
+        self.in_process = True
+        self.forked = False
+        self.close()
 
     def close(self) -> None:
         """Close a local cluster this engine started."""
