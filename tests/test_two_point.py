@@ -139,6 +139,23 @@ def test_two_point_needs_profiles():
         Model(railhunt.Vehicle.paper2019(), contact_mechanics="two-point")
 
 
+def test_another_contact_table_is_refused_with_two_point_mechanics():
+    """The two-point table is built from the vehicle's own profiles: another ``contact=``
+    would be ignored silently, so it is refused in one line; the vehicle's own table (as
+    the analyses pass it on) is accepted."""
+    vehicle = railhunt.Vehicle.shipped(TWO_POINT)
+    from railhunt.contact.profiles import shipped_profile
+
+    other = railhunt.contact_geometry(shipped_profile("worn_hollow_2mm"),
+                                      railhunt.uic60(0.0), rail_inclination=1 / 40)  # fmt: skip
+    with pytest.raises(ValueError, match=r"contact= is invalid with contact_mechanics = "
+                                         r"'two-point'") as info:  # fmt: skip
+        Model(vehicle, contact=other)
+    assert "\n" not in str(info.value)
+    own = Model(vehicle, contact=vehicle.contact.geometry())
+    assert own.contact_mechanics[0] == "two-point"
+
+
 def test_table_columns_are_continuous_where_a_patch_takes_load(table):
     """A slot's geometry does not jump where its share rises from 0: its contact angle
     and rolling radius at the first loaded node are within 2 mm's worth of the previous

@@ -108,6 +108,7 @@ class Model:
         #: The state vector's slots (bodies, coordinates, dampers) of this vehicle.
         self.layout: StateLayout = asm.layout
         self.creep_law = creep_law if creep_law is not None else asm.creep_laws[0]
+        given = contact
         if contact is None and vehicle.contact is not None:
             contact = vehicle.contact.geometry()
         wr = asm.wheel_rail.copy()
@@ -131,6 +132,12 @@ class Model:
         if "two-point" in mechanics and vehicle.contact is None:
             raise ValueError("contact_mechanics = 'two-point' is invalid for this vehicle: it "
                              "needs its profiles (a [contact] section)")
+        if ("two-point" in mechanics and given is not None
+                and not _same_geometry(given, vehicle.contact.geometry())):
+            raise ValueError("contact= is invalid with contact_mechanics = 'two-point': its "
+                             "patches are tabulated from the vehicle's own [contact] profiles; "
+                             "give the profiles there (railhunt.studies.fleet.with_wheel, a "
+                             "vehicle file) or use contact_mechanics = 'per-point'")  # fmt: skip
         creep_table = NO_CREEP_TABLE
         if any(exact):
             from railhunt.contact.creep_table import shipped_creep_table
@@ -344,6 +351,17 @@ def wheel_rail_rows(rows: list[np.ndarray]) -> np.ndarray:
     for j, r in enumerate(rows):
         out[j, : len(r)] = r
     return out
+
+
+def _same_geometry(a: object, b: object) -> bool:
+    """Whether two contact tables are the same (one object, or equal rows)."""
+    if a is b:
+        return True
+    names = ("y", "r_left", "r_right", "delta_left", "delta_right", "roll")
+    try:
+        return all(np.array_equal(getattr(a, k), getattr(b, k)) for k in names)
+    except AttributeError:
+        return False
 
 
 def _point_tail(contact: object, material: tuple[float, float] | None, static_load: float,
