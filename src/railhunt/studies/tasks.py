@@ -31,6 +31,7 @@ same in this process, on a local cluster and on a remote one.
 from __future__ import annotations
 
 import functools
+import gc
 import math
 import os
 import signal
@@ -305,8 +306,16 @@ class TaskEngine:
         thread waits while they start, so that it holds no lock they would inherit held (a
         fork copies only the thread that forks)."""
         self.forked = True
-        self.background = BackgroundCluster(n, saturation=FORKED_SATURATION)
-        self.background.wait()
+        # The objects that exist now are left out of the garbage collector's passes, in the
+        # workers too: a collection would otherwise write to every one of them and so copy
+        # each page of this process's memory into each worker (a worker's first task of
+        # the linear critical speed ran 3-4 times slower than the next ones).
+        gc.freeze()
+        try:
+            self.background = BackgroundCluster(n, saturation=FORKED_SATURATION)
+            self.background.wait()
+        finally:
+            gc.unfreeze()
 
     def _fork_early(self) -> bool:
         """Whether to fork the workers before any point is timed (:data:`EARLY_FORK_POINTS`)."""
@@ -400,9 +409,13 @@ class TaskEngine:
         inflight: dict[Any, list[Any]] = {}  # future -> its items
         lost: list[tuple[Any, str]] = []
 
+        size: list[int] = []  # points per task, once a point is timed
+
         def submit() -> None:
-            while pending and (self.seconds_per_point is not None or len(inflight) < workers):
-                k = 1 if self.seconds_per_point is None else self._size(len(pending), workers)
+            if self.seconds_per_point is not None and not size:
+                size.append(self._size(len(pending), workers))
+            while pending and (size or len(inflight) < workers):
+                k = size[0] if size else 1
                 chunk = pending[:k]
                 del pending[:k]
                 inflight[client.submit(timed_chunk, chunk, task, pure=False)] = chunk
