@@ -69,9 +69,8 @@ FORK_START_S = 0.3
 #: the first points are then timed while the workers compute too.
 EARLY_FORK_POINTS = 16
 #: Tasks a worker of a forked cluster holds: the one it runs and the next, which it starts
-#: without waiting for the scheduler (``worker-saturation``; 1.0, one task, delayed each
-#: next task by 0.1-0.3 s on 2 cores, and a 24-point sweep ran 1.27-1.38 x faster than in
-#: one process against 1.44-1.58 x with 2.0).
+#: without waiting for the scheduler (``worker-saturation``; a 24-point sweep on 2 cores
+#: ran 1.51-1.61 x faster than in one process with 2.0, 1.40-1.56 x with 1.0).
 FORKED_SATURATION = 2.0
 #: Tasks per worker a study is split into at least (when its points allow): the last
 #: tasks to finish then keep every worker busy until the end.
