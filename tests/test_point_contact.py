@@ -328,3 +328,22 @@ def test_shipped_table_against_the_exact_solver() -> None:
     acc = accuracy(table, points=30, seed=4)
     assert max(acc["rms_fx"], acc["rms_fy"], acc["rms_mz"]) < 0.025, acc
     assert max(acc["max_fx"], acc["max_fy"], acc["max_mz"]) < 0.08, acc
+
+
+def test_a_model_s_contact_mechanics_reach_the_linear_critical_speed():
+    """``linear_critical_speed(vehicle, model=...)`` takes the model as it is: the
+    per-point vehicle run with centred mechanics is the centred table vehicle to the bit,
+    and the continuation of the hunting branch is seeded from the model (not from a new
+    model of the vehicle's own mechanics)."""
+    from railhunt.analysis.hunting_branch import _branch
+
+    vp = railhunt.Vehicle.shipped("s1002_uic60_per_point")
+    centred = Model(vp, contact_mechanics="centred")
+    lin = railhunt.linear_critical_speed(vp, model=centred)
+    table = railhunt.linear_critical_speed(railhunt.Vehicle.shipped("s1002_uic60_table"))
+    assert lin.speed_kmh == table.speed_kmh
+    assert abs(lin.speed_kmh - railhunt.linear_critical_speed(vp).speed_kmh) > 10.0
+    branch = _branch(centred)
+    assert branch is not None and branch.critical_kmh == lin.speed_kmh
+    with pytest.raises(ValueError, match="model= is invalid together with creep_law="):
+        railhunt.linear_critical_speed(vp, model=centred, creep_law="polach")

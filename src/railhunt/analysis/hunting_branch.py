@@ -46,8 +46,7 @@ _BRANCHES: weakref.WeakKeyDictionary[Model, _Branch | None] = weakref.WeakKeyDic
 def _branch(model: Model) -> _Branch | None:
     """The model's branch, seeded with the linear critical speed's crossing pair."""
     if model not in _BRANCHES:
-        seed_crossing(model, linear_critical_speed(model.vehicle, creep_law=model.creep_law,
-                                                   contact=model.contact))  # fmt: skip
+        seed_crossing(model, linear_critical_speed(model.vehicle, model=model))
     return _BRANCHES[model]
 
 

@@ -236,6 +236,8 @@ def linear_critical_speed(
     creep_law: str | None = None,
     contact: object = None,
     curve: Curve | Callable[[float], Curve] | None = None,
+    *,
+    model: Model | None = None,
 ) -> LinearCriticalSpeed:
     """Lowest speed at which the centred (or steady-curving) equilibrium loses stability.
 
@@ -269,6 +271,11 @@ def linear_critical_speed(
         :func:`railhunt.critical_speed` does (``.limit``, ``.warnings``); it raises
         :class:`~railhunt.analysis.curving.CurvingError` when the state is beyond it
         already at ``min_kmh``.
+    model : Model, optional
+        The model of ``vehicle`` to use as it is (its creep law, contact table and each
+        wheelset's contact mechanics, e.g. ``Model(vehicle, contact_mechanics=...)``)
+        instead of building one from ``creep_law`` and ``contact``, which must then be
+        None.
 
     Returns
     -------
@@ -283,7 +290,11 @@ def linear_critical_speed(
         raise ValueError(
             f"min_kmh = {min_kmh} km/h is invalid: must be below max_kmh = {max_kmh} km/h"
         )
-    model = Model(vehicle, creep_law=creep_law, contact=contact)
+    if model is None:
+        model = Model(vehicle, creep_law=creep_law, contact=contact)
+    elif creep_law is not None or contact is not None or model.vehicle is not vehicle:
+        raise ValueError("model= is invalid together with creep_law= or contact=, or with "
+                         "another vehicle: the model already holds them")  # fmt: skip
     limit = None
     if curve is None:
         def jacobian_at(kmh: float) -> np.ndarray:
