@@ -58,10 +58,10 @@ CLUSTER_START_S = 3.0
 #: long or longer on 2 new workers as in one process (0.91x and 0.92-1.00x).
 WORKER_CODE_S = 15.0
 #: Estimated cost (s) of a local cluster of forked workers (Linux,
-#: :func:`railhunt.studies.execute.worker_start_method`): it starts in about 0.1 s and its
-#: workers have this process's compiled code; each round of tasks costs some 50 ms more
-#: than in this process (2-core machine). A study goes to forked workers when the time they
-#: save, ``(1 - 1/workers)`` of its remaining points' cost, is larger.
+#: :func:`railhunt.studies.execute.worker_start_method`): it starts in 0.1-0.35 s (0.2 s of
+#: it the first import of Dask) and its workers have this process's compiled code (2-core
+#: machine). A study goes to forked workers when the time they save, ``(1 - 1/workers)`` of
+#: its remaining points' cost, is larger.
 FORK_START_S = 0.3
 #: A vehicle study (one that loads compiled model code) with at least this many points
 #: left forks its workers before timing any point, when forked workers are available: its
