@@ -293,3 +293,25 @@ def test_a_vehicle_study_on_forked_workers_writes_the_same_file(tmp_path, monkey
     assert (tmp_path / "one.csv").read_bytes() == (tmp_path / "two.csv").read_bytes()
     assert [r["linear_critical_speed_kmh"] for r in one.rows] == [
         r["linear_critical_speed_kmh"] for r in two.rows]
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="forked workers: Linux")
+def test_forked_workers_write_to_standard_streams_of_their_own(monkeypatch):
+    """A forked worker's sys.stdout/sys.stderr are new objects (a copy of the parent's
+    could carry a buffer lock another thread held at the fork), on the same descriptors,
+    and a worker's warning reaches them."""
+    import warnings
+
+    from railhunt.studies.execute import local_client
+
+    monkeypatch.setenv("RAILHUNT_WORKER_START", "fork")
+
+    def streams() -> tuple[int, int, int, int]:
+        warnings.warn("a worker's warning", RuntimeWarning, stacklevel=1)
+        print("a worker's line", flush=True)
+        return id(sys.stdout), id(sys.stderr), sys.stdout.fileno(), sys.stderr.fileno()
+
+    with local_client(1) as client:
+        (worker,) = client.run(streams).values()
+    assert worker[0] != id(sys.stdout) and worker[1] != id(sys.stderr)
+    assert worker[2:] == (sys.stdout.fileno(), sys.stderr.fileno())

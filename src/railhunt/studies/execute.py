@@ -157,13 +157,36 @@ def local_cluster(workers: int, saturation: float = 1.0) -> Any:
 
 
 def dask_setup(worker: Any) -> None:
-    """Dask preload hook, run in each local worker process as it starts: ignore SIGINT.
+    """Dask preload hook, run in each local worker process as it starts: ignore SIGINT,
+    and give a forked worker standard streams of its own.
 
     A terminal's Ctrl-C reaches every process of the group; the process that runs the
     study handles it (cancels, closes the cluster, keeps the file), the workers do not each
-    print a traceback of their own.
+    print a traceback of their own. A forked worker's ``sys.stdout`` and ``sys.stderr`` are
+    copies of the parent's, whose buffer locks may have been held by another thread of the
+    parent (a progress bar redrawing) at the instant of the fork: its first warning would
+    then wait for ever. New stream objects on the same file descriptors have free locks.
     """
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if worker_start_method() == "fork":
+        fresh_standard_streams()
+
+
+def fresh_standard_streams() -> None:
+    """Replace ``sys.stdout`` and ``sys.stderr`` by new line-buffered text streams on the
+    same file descriptors (their encodings and error handlers kept); a stream without a
+    file descriptor is left as it is."""
+    import io
+
+    for name in ("stdout", "stderr"):
+        stream = getattr(sys, name, None)
+        try:
+            fd = stream.fileno()
+        except (AttributeError, OSError, ValueError):
+            continue
+        raw = io.FileIO(fd, "w", closefd=False)
+        setattr(sys, name, io.TextIOWrapper(io.BufferedWriter(raw), encoding=stream.encoding,
+                                            errors=stream.errors, line_buffering=True))
 
 
 @contextmanager
