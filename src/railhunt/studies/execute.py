@@ -110,8 +110,8 @@ def worker_start_method() -> str:
     function this process has loaded, so it starts in about 0.1 s and evaluates its first
     point as fast as this process does (a spawned worker imports railhunt and loads the
     compiled model from numba's cache first: about 1 s to start and 1.3-1.6 s for its first
-    point of the paper's vehicle, on 2 cores). A study forks its workers while no other
-    thread of this process runs Python code. ``RAILHUNT_WORKER_START=spawn`` (or
+    point of the paper's vehicle, on 2 cores). A study forks its workers while its own
+    thread waits (Dask forks them from a thread of its own). ``RAILHUNT_WORKER_START=spawn`` (or
     ``forkserver``) chooses another method; macOS and Windows always spawn.
     """
     value = os.environ.get(START_METHOD_ENV, "").strip().lower()

@@ -271,7 +271,10 @@ class TaskEngine:
         if n == 1 or not slower_here:
             self.in_process = True
             return
-        why = None if forked else unimportable_main()
+        if forked:  # a forked worker imports nothing again: any main program will do
+            self._fork(n)
+            return
+        why = unimportable_main()
         if why is not None:
             self.note = (f"railhunt: note: {why}: the study runs in this process; save the "
                          f"program to a file to run it on {n} worker processes")  # fmt: skip
@@ -280,11 +283,7 @@ class TaskEngine:
             return
         self._warm_up()
         self.in_process = False
-        if forked:
-            self._fork(n)
-        else:
-            self.background = BackgroundCluster(n, functools.partial(run_chunk, [first],
-                                                                     task))  # fmt: skip
+        self.background = BackgroundCluster(n, functools.partial(run_chunk, [first], task))
 
     def _warm_up(self) -> None:
         if self.warm_up is None:
@@ -299,11 +298,13 @@ class TaskEngine:
             raise
 
     def _fork(self, n: int) -> None:
-        """Start a local cluster of ``n - 1`` forked workers; this process is the n-th.
+        """Warm up, then start a local cluster of ``n`` forked workers.
 
         Forked workers copy this process, compiled code included (nothing to prime). This
         thread waits while they start, so that it holds no lock they would inherit held (a
         fork copies only the thread that forks)."""
+        self._warm_up()
+        self.in_process = False
         self.forked = True
         # The objects that exist now are left out of the garbage collector's passes, in the
         # workers too: a collection would otherwise write to every one of them and so copy
@@ -343,8 +344,6 @@ class TaskEngine:
         if self.in_process is None and self.seconds_per_point is None and self._fork_early():
             from railhunt.studies.execute import check_workers
 
-            self._warm_up()
-            self.in_process = False
             self._fork(check_workers(self.options.workers))
         if self.forked:
             return self._share(task, items, sink)
@@ -391,11 +390,11 @@ class TaskEngine:
                sink: Sink) -> list[tuple[Any, str]]:  # fmt: skip
         """Evaluate ``items`` on a forked local cluster.
 
-        Until a point has been timed, the workers get one point per task, and the first
-        task back tells the cost of a point (timed on its worker); then the remaining
-        points are submitted at once, in tasks of about ``task_seconds``.
+        Until a point has been timed, each worker first gets one point, timed where it runs
+        (:func:`timed_chunk`); then the remaining points go in tasks of about
+        ``task_seconds`` (:meth:`_distribute`).
         """
-        from distributed import wait
+        from railhunt.studies.execute import run_tasks
 
         try:
             client = self.background.client()
@@ -403,41 +402,21 @@ class TaskEngine:
             self._cluster_failed(exc)
             self._run_here(task, items, sink)
             return []
-        workers = self._workers(client)
-        pending = list(items)
-        inflight: dict[Any, list[Any]] = {}  # future -> its items
-        lost: list[tuple[Any, str]] = []
+        if self.seconds_per_point is not None:
+            return self._distribute(client, task, items, sink)
+        n = self._workers(client)
+        first, rest = items[:n], items[n:]
 
-        size: list[int] = []  # points per task, once a point is timed
+        def timed(result: tuple[list[dict[str, Any]], float]) -> None:
+            rows, seconds = result
+            if self.seconds_per_point is None and rows:
+                self.seconds_per_point = seconds / len(rows)
+            sink(rows)
 
-        def submit() -> None:
-            if self.seconds_per_point is not None and not size:
-                size.append(self._size(len(pending), workers))
-            while pending and (size or len(inflight) < workers):
-                k = size[0] if size else 1
-                chunk = pending[:k]
-                del pending[:k]
-                inflight[client.submit(timed_chunk, chunk, task, pure=False)] = chunk
-
-        try:
-            submit()
-            while inflight:
-                for future in wait(list(inflight), return_when="FIRST_COMPLETED").done:
-                    chunk = inflight.pop(future)
-                    try:
-                        rows, seconds = future.result()
-                    except Exception as exc:  # noqa: BLE001 - KilledWorker, cancelled, ...
-                        lost.extend((item, f"{type(exc).__name__}: {exc}") for item in chunk)
-                    else:
-                        if self.seconds_per_point is None and rows:
-                            self.seconds_per_point = seconds / len(rows)
-                        sink(rows)
-                    future.release()
-                submit()
-        except BaseException:
-            client.cancel(list(inflight))
-            raise
-        return lost
+        lost = run_tasks(functools.partial(timed_chunk, task=task), [[x] for x in first],
+                         timed, client=client)  # type: ignore[arg-type]
+        lost = [(item, reason) for group, reason in lost for item in group]
+        return lost + (self._distribute(client, task, rest, sink) if rest else [])
 
     def _cluster_failed(self, exc: BaseException) -> None:
         text = " ".join(str(exc).split())[:200]
