@@ -33,7 +33,8 @@ def fingerprint() -> dict[str, str]:
     out = {}
     for name in system._fields:
         value = getattr(system, name)
-        if name == "scratch" or (name in ("stop_wheelset", "creep_table") and value.size == 0):
+        if name in ("scratch", "contact_work") or (name in ("stop_wheelset", "creep_table")
+                                                   and value.size == 0):
             continue
         if name == "wheel_rail" and value.ndim == 2:  # one row per wheelset (since issue 18)
             for j, row in enumerate(value):

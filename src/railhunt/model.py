@@ -27,6 +27,7 @@ from railhunt.kernel.layout import (
     N_ROUTE,
     N_STATE,
     N_WR,
+    NO_CONTACT_WORK,
     NO_CREEP_TABLE,
     STATE_NAMES,
     WHEELSET_Y,
@@ -35,6 +36,7 @@ from railhunt.kernel.layout import (
     StateLayout,
     SystemArrays,
 )
+from railhunt.kernel.point_contact import N_STAGE_SLOTS
 from railhunt.kernel.rhs import jacobian, rhs, wheelset_forces
 from railhunt.vehicle import Vehicle
 
@@ -198,6 +200,8 @@ class Model:
             scratch=np.zeros(3 * len(self.mass)),
             stop_wheelset=asm.stop_track.copy(),
             creep_table=creep_table,
+            contact_work=(np.zeros((N_STAGE_SLOTS, 2 * len(wr))) if any(exact)
+                          else NO_CONTACT_WORK),
         )
 
     @property

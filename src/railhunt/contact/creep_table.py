@@ -154,7 +154,14 @@ class CreepTable:
         points = control_points(self.values)
         lanes = np.zeros((*points.shape[:-1], LANES))
         lanes[..., :3] = points
-        return np.ascontiguousarray(np.concatenate([head, lanes.ravel()]))
+        flat = np.concatenate([head, lanes.ravel()])
+        # Each control point (LANES doubles, one vector load) on a 32-byte boundary, so that
+        # no load of the stencil straddles two cache lines.
+        buffer = np.zeros(flat.size + 8)
+        skip = (-(buffer.ctypes.data + 8 * int(TableHeader.DATA)) // 8) % 4
+        aligned = buffer[skip:skip + flat.size]
+        aligned[:] = flat
+        return aligned
 
     def normalised(self, ux: float, uy: float, us: float, a_over_b: float,
                    moment: tuple[float, float] | None = None

@@ -179,7 +179,7 @@ def _slice_stencil_compiled(t, k0, sx, sy, x0, x1, x2, y0, y1, y2, z0, z1, z2):
     return impl
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def table_correction(sx: float, sy: float, ss: float, ab_index: float,
                      table: np.ndarray) -> tuple[float, float, float]:  # fmt: skip
     """The tabulated correction ``(D_x, D_y, D_m)`` at ``s_x >= 0``, ``s_y``, ``s_s`` and
@@ -214,7 +214,7 @@ def table_correction(sx: float, sy: float, ss: float, ab_index: float,
     return d0, d1, d2
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def table_creep(ux: float, uy: float, us: float, my: float, ms: float, ab_index: float,
                 table: np.ndarray, ks: float = -1.0) -> tuple[float, float, float]:  # fmt: skip
     """Normalised creep forces and spin moment of one contact from the creep table.

@@ -408,6 +408,8 @@ N_ROUTE = len(RouteColumn)
 NO_TRACK_STOPS = np.zeros(0, dtype=np.int64)
 #: No creep table (default of ``SystemArrays.creep_table``).
 NO_CREEP_TABLE = np.zeros(0)
+#: The empty work array of :class:`SystemArrays` (no staged per-point contact).
+NO_CONTACT_WORK = np.zeros((0, 0))
 
 
 class SystemArrays(NamedTuple):
@@ -469,6 +471,12 @@ class SystemArrays(NamedTuple):
     creep_table : numpy.ndarray
         The tabulated creep law of per-point contact mechanics
         (:mod:`railhunt.kernel.creep_table`), empty when no wheelset uses it.
+    contact_work : numpy.ndarray, shape (N_STAGE_SLOTS, 2 n_wheelsets) or (0, 0)
+        Work space of the wheelsets whose per-point contact uses the tabulated law: the
+        right-hand side evaluates their creep forces together
+        (:func:`railhunt.kernel.point_contact.stage_point_contact`); overwritten at every
+        call, one thread at a time per bundle like ``scratch``. Empty: each wheelset on
+        its own.
     """
 
     linear: np.ndarray
@@ -490,3 +498,4 @@ class SystemArrays(NamedTuple):
     scratch: np.ndarray
     stop_wheelset: np.ndarray = NO_TRACK_STOPS
     creep_table: np.ndarray = NO_CREEP_TABLE
+    contact_work: np.ndarray = NO_CONTACT_WORK

@@ -31,16 +31,19 @@ The lateral force on the wheelset is ``T cos d -+ N sin d`` per wheel (the stati
 from __future__ import annotations
 
 import math
+from enum import IntEnum
 
 import numpy as np
 from numba import njit
 
 from railhunt.kernel.creep import CreepLaw, heuristic_saturation, polach_saturation
+from railhunt.kernel.creep_batch import N_BATCH_SLOTS, BatchSlot
 from railhunt.kernel.creep_table import table_creep
 from railhunt.kernel.layout import N_POINT_COLUMNS, PER_POINT, WR
 
-__all__ = ["normal_force_ratio", "point_columns", "point_wheel_creep", "point_wheelset_contact",
-           "uses_per_point"]
+__all__ = ["N_STAGE_SLOTS", "StageSlot", "normal_force_ratio", "point_columns",
+           "point_wheel_creep", "point_wheelset_contact", "stage_point_contact",
+           "unstage_point_contact", "uses_per_point", "uses_staged_table"]
 
 #: Below this the equilibrium's denominator ``cos d +- t sin d`` is floored smoothly ...
 _DEN_KNEE = 0.05
@@ -141,25 +144,13 @@ def _linear(q: float, qth: float, cd: float, c1: float, k11: float, k22: float, 
     return k11 * q23, k22 * q23, k23 * q, k33 * q * qth, c1 * qth, q / cd
 
 
-@njit(cache=True)
-def point_wheel_creep(
+@njit(cache=True, inline="always")
+def _setup(
     y_rel: float, dy: float, cpsi: float, spsi: float, yaw_rate: float, v: float,
-    wr: np.ndarray, q_left: float, q_right: float, table: np.ndarray,
+    wr: np.ndarray, q_left: float, q_right: float,
 ) -> tuple[float, ...]:  # fmt: skip
-    """Creepages, creep forces and normal forces of both wheels, per-point mechanics.
-
-    Parameters as :func:`point_wheelset_contact` (``cpsi``, ``spsi``: cosine and sine of
-    the yaw angle relative to the track).
-
-    Returns
-    -------
-    tuple of float
-        ``(Fx_L, Fy_L, Mz_L, Fx_R, Fy_R, Mz_R, xi_x_L, xi_y_L, phi_L, xi_x_R, xi_y_R,
-        phi_R, N_L, N_R, delta_L, delta_R, cos delta_L, sin delta_L, cos delta_R,
-        sin delta_R)``: forces (N) and spin moments (N*m) in each contact's plane,
-        creepages (-, -, 1/m), normal forces (N), contact angles (rad) and their cosines
-        and sines.
-    """
+    """Creepages, linear-theory coefficients and geometry of both wheels (everything
+    before the creep law)."""
     a, r0 = wr[WR.A], wr[WR.R0]
     (r_l, r_r, d_l, d_r, c1l, k11l, k22l, k23l, k33l, abl,
      c1r, k11r, k22r, k23r, k33r, abr) = point_columns(y_rel, wr)  # fmt: skip
@@ -183,6 +174,32 @@ def point_wheel_creep(
     qth_r = wr[p + 1] if q_right == n_load else np.cbrt(q_right)
     f11l, f22l, f23l, f33l, cl, n0l = _linear(q_left, qth_l, cdl, c1l, k11l, k22l, k23l, k33l)
     f11r, f22r, f23r, f33r, cr, n0r = _linear(q_right, qth_r, cdr, c1r, k11r, k22r, k23r, k33r)
+    return (xl, yl, sl, xr, yr, sr, f11l, f22l, f23l, f33l, cl, n0l, f11r, f22r, f23r, f33r,
+            cr, n0r, abl, abr, d_l, d_r, cdl, sdl, cdr, sdr)
+
+
+@njit(cache=True)
+def point_wheel_creep(
+    y_rel: float, dy: float, cpsi: float, spsi: float, yaw_rate: float, v: float,
+    wr: np.ndarray, q_left: float, q_right: float, table: np.ndarray,
+) -> tuple[float, ...]:  # fmt: skip
+    """Creepages, creep forces and normal forces of both wheels, per-point mechanics.
+
+    Parameters as :func:`point_wheelset_contact` (``cpsi``, ``spsi``: cosine and sine of
+    the yaw angle relative to the track).
+
+    Returns
+    -------
+    tuple of float
+        ``(Fx_L, Fy_L, Mz_L, Fx_R, Fy_R, Mz_R, xi_x_L, xi_y_L, phi_L, xi_x_R, xi_y_R,
+        phi_R, N_L, N_R, delta_L, delta_R, cos delta_L, sin delta_L, cos delta_R,
+        sin delta_R)``: forces (N) and spin moments (N*m) in each contact's plane,
+        creepages (-, -, 1/m), normal forces (N), contact angles (rad) and their cosines
+        and sines.
+    """
+    (xl, yl, sl, xr, yr, sr, f11l, f22l, f23l, f33l, cl, n0l, f11r, f22r, f23r, f33r, cr,
+     n0r, abl, abr, d_l, d_r, cdl, sdl, cdr, sdr) = _setup(y_rel, dy, cpsi, spsi, yaw_rate,
+                                                          v, wr, q_left, q_right)  # fmt: skip
     mu = wr[WR.MU]
     law = int(wr[WR.CREEP_LAW])
     if law == CreepLaw.EXACT_TABLE and table.shape[0] > 0:
@@ -235,6 +252,22 @@ def point_wheel_creep(
             sr, gl * n0l, gr * n0r, d_l, d_r, cdl, sdl, cdr, sdr)
 
 
+@njit(cache=True, inline="always")
+def _track_forces(
+    fxl: float, fyl: float, mzl: float, fxr: float, fyr: float, mzr: float, n_l: float,
+    n_r: float, cdl: float, sdl: float, cdr: float, sdr: float, cpsi: float, spsi: float,
+    a: float, sin_psi_rel: float,
+) -> tuple[float, float, float, float, float, float]:  # fmt: skip
+    """The contact forces in track coordinates (Eqs. 29-30 with the normal forces' lateral
+    parts): ``(F_y, M_z, F_left, F_right, N_left, N_right)``."""
+    nsl = n_l * sdl
+    nsr = n_r * sdr
+    f_left = fyl * cdl * cpsi + fxl * spsi - nsl
+    f_right = fyr * cdr * cpsi + fxr * spsi + nsr
+    m_yaw = (fxr - fxl) * a + mzl * cdl + mzr * cdr + a * sin_psi_rel * (nsl + nsr)
+    return f_left + f_right, m_yaw, f_left, f_right, n_l, n_r
+
+
 @njit(cache=True)
 def point_wheelset_contact(
     y_rel: float, dy: float, psi: float, psi_rel: float, yaw_rate: float, v: float,
@@ -257,11 +290,86 @@ def point_wheelset_contact(
     (fxl, fyl, mzl, fxr, fyr, mzr, _, _, _, _, _, _, n_l, n_r, _, _, cdl, sdl, cdr,
      sdr) = point_wheel_creep(y_rel, dy, cpsi, spsi, yaw_rate, v, wr, q_left, q_right,
                               table)  # fmt: skip
-    a = wr[WR.A]
-    # Into track coordinates (Eqs. 29-30 with the normal forces' lateral parts).
-    nsl = n_l * sdl
-    nsr = n_r * sdr
-    f_left = fyl * cdl * cpsi + fxl * spsi - nsl
-    f_right = fyr * cdr * cpsi + fxr * spsi + nsr
-    m_yaw = (fxr - fxl) * a + mzl * cdl + mzr * cdr + a * math.sin(psi_rel) * (nsl + nsr)
-    return f_left + f_right, m_yaw, f_left, f_right, n_l, n_r
+    return _track_forces(fxl, fyl, mzl, fxr, fyr, mzr, n_l, n_r, cdl, sdl, cdr, sdr, cpsi,
+                         spsi, wr[WR.A], math.sin(psi_rel))  # fmt: skip
+
+
+class StageSlot(IntEnum):
+    """Rows after the creep batch's (:class:`~railhunt.kernel.creep_batch.BatchSlot`) in
+    the work array of the staged per-point contact (:func:`stage_point_contact`)."""
+
+    N0 = N_BATCH_SLOTS  # Q / cos(delta) of the wheel (N)
+    CD = N_BATCH_SLOTS + 1  # cos(delta)
+    SD = N_BATCH_SLOTS + 2  # sin(delta)
+    # Per wheelset, in its left wheel's column:
+    CPSI = N_BATCH_SLOTS + 3  # cos(psi)
+    SPSI = N_BATCH_SLOTS + 4  # sin(psi)
+    SIN_PSI_REL = N_BATCH_SLOTS + 5  # sin(psi_rel)
+    WHEELSET = N_BATCH_SLOTS + 6  # the wheelset's index
+
+
+#: Rows of the staged per-point contact's work array.
+N_STAGE_SLOTS = N_BATCH_SLOTS + len(StageSlot)
+
+
+@njit(cache=True)
+def uses_staged_table(wr: np.ndarray, table: np.ndarray) -> bool:
+    """Whether a wheelset's per-point contact with the ``"exact-table"`` law can be staged
+    (:func:`stage_point_contact`): per-point mechanics, that law and its table."""
+    return (table.shape[0] > 0 and int(wr[WR.CREEP_LAW]) == CreepLaw.EXACT_TABLE
+            and uses_per_point(wr))  # fmt: skip
+
+
+@njit(cache=True, inline="always")
+def stage_point_contact(
+    y_rel: float, dy: float, psi: float, psi_rel: float, yaw_rate: float, v: float,
+    wr: np.ndarray, q_left: float, q_right: float, w: np.ndarray, k: int,
+) -> None:  # fmt: skip
+    """First half of :func:`point_wheelset_contact` with the ``"exact-table"`` law: the
+    wheels' inputs of :func:`~railhunt.kernel.creep_batch.table_creep_batch` into columns
+    ``k`` (left) and ``k + 1`` (right) of the work array ``w`` (rows :class:`StageSlot`).
+    After the batch, :func:`unstage_point_contact` gives the forces, the same bits as
+    :func:`point_wheelset_contact`."""
+    cpsi, spsi = math.cos(psi), math.sin(psi)
+    (xl, yl, sl, xr, yr, sr, f11l, f22l, f23l, f33l, cl, n0l, f11r, f22r, f23r, f33r, cr,
+     n0r, abl, abr, _, _, cdl, sdl, cdr, sdr) = _setup(y_rel, dy, cpsi, spsi, yaw_rate, v,
+                                                       wr, q_left, q_right)  # fmt: skip
+    mu = wr[WR.MU]
+    for col, f11, f22, f23, f33, c, n0, xi, eta, phi, ab, cd, sd in (
+            (k, f11l, f22l, f23l, f33l, cl, n0l, xl, yl, sl, abl, cdl, sdl),
+            (k + 1, f11r, f22r, f23r, f33r, cr, n0r, xr, yr, sr, abr, cdr, sdr)):
+        w[BatchSlot.F11, col] = f11
+        w[BatchSlot.F22, col] = f22
+        w[BatchSlot.F23, col] = f23
+        w[BatchSlot.F33, col] = f33
+        w[BatchSlot.C, col] = c
+        w[BatchSlot.MU_N, col] = mu * n0
+        w[BatchSlot.XI, col] = xi
+        w[BatchSlot.ETA, col] = eta
+        w[BatchSlot.PHI, col] = phi
+        w[BatchSlot.AB, col] = ab
+        w[StageSlot.N0, col] = n0
+        w[StageSlot.CD, col] = cd
+        w[StageSlot.SD, col] = sd
+    w[StageSlot.CPSI, k] = cpsi
+    w[StageSlot.SPSI, k] = spsi
+    w[StageSlot.SIN_PSI_REL, k] = math.sin(psi_rel)
+
+
+@njit(cache=True, inline="always")
+def unstage_point_contact(
+    wr: np.ndarray, w: np.ndarray, k: int
+) -> tuple[float, float, float, float, float, float]:  # fmt: skip
+    """Second half of :func:`point_wheelset_contact` (see :func:`stage_point_contact`):
+    ``(F_y, M_z, F_left, F_right, N_left, N_right)`` from columns ``k`` and ``k + 1``."""
+    n0l, n0r = w[StageSlot.N0, k], w[StageSlot.N0, k + 1]
+    cdl, sdl = w[StageSlot.CD, k], w[StageSlot.SD, k]
+    cdr, sdr = w[StageSlot.CD, k + 1], w[StageSlot.SD, k + 1]
+    fyl = w[BatchSlot.FY, k]
+    fyr = w[BatchSlot.FY, k + 1]
+    gl = normal_force_ratio(cdl, sdl, fyl / n0l, 1.0)
+    gr = normal_force_ratio(cdr, sdr, fyr / n0r, -1.0)
+    return _track_forces(w[BatchSlot.FX, k] * gl, fyl * gl, w[BatchSlot.MZ, k] * gl,
+                         w[BatchSlot.FX, k + 1] * gr, fyr * gr, w[BatchSlot.MZ, k + 1] * gr,
+                         gl * n0l, gr * n0r, cdl, sdl, cdr, sdr, w[StageSlot.CPSI, k],
+                         w[StageSlot.SPSI, k], wr[WR.A], w[StageSlot.SIN_PSI_REL, k])

@@ -26,8 +26,15 @@ import numpy as np
 from numba import njit
 
 from railhunt.kernel.bumpstop import bump_stop_force
+from railhunt.kernel.creep_batch import table_creep_batch
 from railhunt.kernel.damper import damper_velocity
 from railhunt.kernel.layout import NO_REFCOUNT, WR, DamperParam, StopParam, SystemArrays
+from railhunt.kernel.point_contact import (
+    StageSlot,
+    stage_point_contact,
+    unstage_point_contact,
+    uses_staged_table,
+)
 from railhunt.kernel.route import route_point
 from railhunt.kernel.track import alignment
 from railhunt.kernel.wheelset import wheelset_contact, wheelset_forces
@@ -235,6 +242,9 @@ def rhs(t: float, x: np.ndarray, v: float, s: SystemArrays, out: np.ndarray) -> 
 
     # Wheel/rail forces: wheelset j meets the track at v t - delay_j (the track input there,
     # and in a curve its wheel loads and the track's yaw rate).
+    work = s.contact_work
+    staged = work.shape[1] > 0
+    n_staged = 0
     for j in range(ws.shape[0]):
         row = wr[j]  # this wheelset's own parameters (mass, load, radius, contact, creep)
         n_load = row[WR.N]
@@ -246,11 +256,27 @@ def rhs(t: float, x: np.ndarray, v: float, s: SystemArrays, out: np.ndarray) -> 
             q_l, q_r, track_rate = wheel_loads(pos, v, row, route)
         else:
             q_l, q_r, track_rate = n_load, n_load, 0.0
+        if staged and uses_staged_table(row, creep):
+            # Per-point contact with the tabulated law: its creep forces are computed below
+            # for all such wheelsets at once (the same bits as wheelset_contact's).
+            stage_point_contact(x[iy] - yr, x[nq + iy], x[ip], x[ip] - slope,
+                                x[nq + ip] + track_rate, v, row, q_l, q_r, work, n_staged)
+            work[StageSlot.WHEELSET, n_staged] = j
+            n_staged += 2
+            continue
         fy, mz, _, _ = wheelset_contact(x[iy] - yr, x[nq + iy], x[ip], x[ip] - slope,
                                         x[nq + ip], x[nq + ip] + track_rate, v, row, q_l, q_r,
                                         creep)
         out[nq + iy] += fy * row[WR.INV_MW]
         out[nq + ip] += mz * row[WR.INV_JW]
+    if n_staged > 0:
+        table_creep_batch(work, n_staged, creep)
+        for k in range(0, n_staged, 2):
+            j = int(work[StageSlot.WHEELSET, k])
+            row = wr[j]
+            fy, mz, _, _, _, _ = unstage_point_contact(row, work, k)
+            out[nq + ws[j, 0]] += fy * row[WR.INV_MW]
+            out[nq + ws[j, 1]] += mz * row[WR.INV_JW]
 
     if not curved:
         return
