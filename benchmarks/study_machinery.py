@@ -147,7 +147,8 @@ def linear_sobol_case(workers: int = 2) -> dict[str, Any]:
             vehicle, factors, ["linear_critical_speed_kmh"], samples=64, seed=0,
             ties={"f22": "f11"}, workers=workers, out=Path(tmp) / "sobol.csv"))  # fmt: skip
     return {"study": t_study, "evaluations": t_serial / workers, "serial": t_serial,
-            "points": r.points, "workers": workers}  # fmt: skip
+            "points": r.points, "workers": workers,
+            "in_study": getattr(r.study, "evaluation_s", None)}  # fmt: skip
 
 
 SWEEP_STUDY = {"C_d1": np.linspace(50e3, 600e3, 12), "K_px": np.linspace(10e6, 80e6, 12)}
@@ -169,7 +170,8 @@ def sweep_case(workers: int) -> dict[str, Any]:
         t_study, r = _timed(lambda: railhunt.sweep(vehicle, SWEEP_STUDY, workers=workers,
                                                    out=Path(tmp) / "sweep.csv"))  # fmt: skip
     return {"study": t_study, "evaluations": t_serial / workers, "serial": t_serial,
-            "points": len(r.rows), "workers": workers}  # fmt: skip
+            "points": len(r.rows), "workers": workers,
+            "in_study": getattr(r, "evaluation_s", None)}  # fmt: skip
 
 
 def _fmt(seconds: float | None) -> str:
@@ -204,7 +206,9 @@ def machinery_rows() -> list[tuple[str, str, str, str, str]]:
                  "workers)", _fmt(lin["study"]),
                  f"{_fmt(lin['evaluations'])} (serial {_fmt(lin['serial'])} / 2)", "",
                  _verdict(lin["study"], target)))  # fmt: skip
-    rows.append(("  machinery per point", _fmt(per), "", "", "-"))
+    rows.append(("  machinery per point (against the evaluations alone)", _fmt(per), "", "",
+                 "-"))  # fmt: skip
+    rows.append(_machinery_row(lin))
     one, two = sweep_case(1), sweep_case(2)
     for case in (one, two):
         per = (case["study"] - case["evaluations"]) / case["points"]
@@ -212,11 +216,24 @@ def machinery_rows() -> list[tuple[str, str, str, str, str]]:
                      _fmt(case["study"]), f"{_fmt(case['evaluations'])} (serial "
                      f"{_fmt(case['serial'])} / {case['workers']})",
                      f"machinery {_fmt(per)}/point", "-"))  # fmt: skip
+        rows.append(_machinery_row(case))
     speedup = one["study"] / two["study"]
     rows.append(("  2 workers against 1", f"{speedup:.2f}x", "", "",
                  "pass" if speedup >= SWEEP_SPEEDUP_TARGET else
                  ("FAIL (not slower)" if speedup >= 1.0 else "FAIL")))  # fmt: skip
     return rows
+
+
+def _machinery_row(case: dict[str, Any]) -> tuple[str, str, str, str, str]:
+    """Machinery per point against the study's own evaluation time: the wall time less the
+    time its processes spent evaluating (``evaluation_s``, summed over them) shared out over
+    the workers. Two processes on two cores each evaluate a few per cent slower than one
+    alone (shared caches and clock); that is the evaluations' cost, not the machinery's."""
+    if case["in_study"] is None:  # a version that does not measure it (before 0.12.0)
+        return ("  machinery per point (study - its evaluations / workers)", "-", "", "", "-")
+    per = (case["study"] - case["in_study"] / case["workers"]) / case["points"]
+    return (f"  machinery per point (study - its evaluations {_fmt(case['in_study'])} / "
+            f"{case['workers']})", _fmt(per), "", "", _verdict(per, PER_POINT_TARGET_S))
 
 
 def _verdict(value: float, target: float) -> str:

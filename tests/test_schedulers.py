@@ -178,11 +178,14 @@ def test_workers_are_capped_at_the_cores(tmp_path, monkeypatch):
     class Started(Exception):
         pass
 
-    def fake_local_client(n, *args):
+    def fake_local_client(n, *args, **kwargs):
         started.append(n)
         raise Started
 
-    monkeypatch.setattr(execute, "local_client", fake_local_client)
+    import railhunt.studies.forkpool as forkpool
+
+    monkeypatch.setattr(execute, "local_client", fake_local_client)  # spawned workers
+    monkeypatch.setattr(forkpool, "ForkPool", fake_local_client)  # forked ones
     # two cheap points would run in this process: make starting workers look free, and
     # time only the first point, so that the second goes to the (fake) cluster
     monkeypatch.setattr(tasks, "CLUSTER_START_S", 0.0)

@@ -100,11 +100,13 @@ def test_results_are_appended_per_task_not_per_point(tmp_path, monkeypatch):
 
 def test_cheap_points_on_several_workers_start_no_cluster(monkeypatch):
     import railhunt.studies.execute as execute
+    import railhunt.studies.forkpool as forkpool
 
-    def no_cluster(n, *args):
-        raise AssertionError("a cluster was started for a study of milliseconds")
+    def no_cluster(n, *args, **kwargs):
+        raise AssertionError("workers were started for a study of milliseconds")
 
     monkeypatch.setattr(execute, "local_client", no_cluster)
+    monkeypatch.setattr(forkpool, "ForkPool", no_cluster)
     r = sensitivity(ishigami, FACTORS, ["y"], samples=64, workers=2)
     assert r.study.computed == 64 * 5
 
@@ -245,11 +247,13 @@ def test_the_engine_estimates_the_cost_of_a_point():
 def test_a_local_cluster_that_cannot_start_leaves_the_study_to_this_process(
         monkeypatch, capsys, tmp_path):  # fmt: skip
     import railhunt.studies.execute as execute
+    import railhunt.studies.forkpool as forkpool
 
-    def broken(n, *args):
+    def broken(n, *args, **kwargs):
         raise OSError("no free port")
 
-    monkeypatch.setattr(execute, "local_client", broken)
+    monkeypatch.setattr(execute, "local_client", broken)  # spawned workers
+    monkeypatch.setattr(forkpool, "ForkPool", broken)  # forked ones
     monkeypatch.setattr(tasks, "CLUSTER_START_S", 0.0)
     monkeypatch.setattr(tasks, "FORK_START_S", 0.0)
 
@@ -272,14 +276,17 @@ def test_a_vehicle_study_on_forked_workers_writes_the_same_file(tmp_path, monkey
     and the points ran on the cluster."""
     import numpy as np
 
-    started = []
-    real = tasks.BackgroundCluster.__init__
+    from railhunt.studies.forkpool import ForkPool
 
-    def spy(self, workers, prime=None, saturation=1.0):
-        started.append((workers, prime, saturation))
-        real(self, workers, prime, saturation)
+    started, pids = [], []
+    real = ForkPool.__init__
 
-    monkeypatch.setattr(tasks.BackgroundCluster, "__init__", spy)
+    def spy(self, workers, saturation=2):
+        started.append((workers, saturation))
+        real(self, workers, saturation)
+        pids.extend(self.pids())
+
+    monkeypatch.setattr(ForkPool, "__init__", spy)
     monkeypatch.setenv("RAILHUNT_WORKER_START", "fork")
     vehicle = railhunt.Vehicle.paper2019()
     values = {"C_d1": np.linspace(50e3, 600e3, 16)}
@@ -288,7 +295,7 @@ def test_a_vehicle_study_on_forked_workers_writes_the_same_file(tmp_path, monkey
     assert started == []
     two = railhunt.sweep(vehicle, values, ["linear_critical_speed"], workers=2,
                          out=tmp_path / "two.csv")  # fmt: skip
-    assert started == [(2, None, tasks.FORKED_SATURATION)]
+    assert started == [(2, int(tasks.FORKED_SATURATION))] and len(set(pids)) == 2
     assert two.computed == 16 and not two.lost_reasons
     assert (tmp_path / "one.csv").read_bytes() == (tmp_path / "two.csv").read_bytes()
     assert [r["linear_critical_speed_kmh"] for r in one.rows] == [
@@ -315,3 +322,33 @@ def test_forked_workers_write_to_standard_streams_of_their_own(monkeypatch):
         (worker,) = client.run(streams).values()
     assert worker[0] != id(sys.stdout) and worker[1] != id(sys.stderr)
     assert worker[2:] == (sys.stdout.fileno(), sys.stderr.fileno())
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux") or default_workers() < 2,
+                    reason="forked workers: Linux, two cores")  # fmt: skip
+def test_a_study_whose_first_points_all_fail_still_runs_the_rest(monkeypatch):
+    """The tasks after the first round are sized by the first point timed; when every first
+    point fails (no timing) the rest still runs."""
+    monkeypatch.setenv("RAILHUNT_WORKER_START", "fork")
+    monkeypatch.setattr(tasks, "FORK_START_S", 0.0)
+
+    def fragile(x1: float, x2: float, x3: float) -> dict[str, float]:
+        time.sleep(0.002)
+        return ishigami(x1, x2, x3)
+
+    engine = tasks.TaskEngine(StudyOptions(workers=2), None, lambda: None, lambda: 40)
+    rows = []
+
+    def task(i):
+        if i < 2:
+            raise RuntimeError("first points fail")
+        return {"point": i, **fragile(0.1 * i, 0.2, 0.3)}
+
+    try:
+        lost = engine.run(task, list(range(40)), rows.extend)
+    finally:
+        engine.close()
+    assert engine.forked
+    assert sorted(r["point"] for r in rows) == list(range(2, 40))
+    assert [item for item, _ in lost] == [0, 1]
+    assert engine.worker_evaluation_s > 0

@@ -38,6 +38,8 @@ from rich.progress import (
 )
 from rich.text import Text
 
+from railhunt.studies.forkpool import fresh_standard_streams
+
 
 class RateColumn(ProgressColumn):
     """Points per second."""
@@ -170,23 +172,6 @@ def dask_setup(worker: Any) -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     if worker_start_method() == "fork":
         fresh_standard_streams()
-
-
-def fresh_standard_streams() -> None:
-    """Replace ``sys.stdout`` and ``sys.stderr`` by new line-buffered text streams on the
-    same file descriptors (their encodings and error handlers kept); a stream without a
-    file descriptor is left as it is."""
-    import io
-
-    for name in ("stdout", "stderr"):
-        stream = getattr(sys, name, None)
-        try:
-            fd = stream.fileno()
-        except (AttributeError, OSError, ValueError):
-            continue
-        raw = io.FileIO(fd, "w", closefd=False)
-        setattr(sys, name, io.TextIOWrapper(io.BufferedWriter(raw), encoding=stream.encoding,
-                                            errors=stream.errors, line_buffering=True))
 
 
 @contextmanager
@@ -446,8 +431,8 @@ def run_tasks(
         The items (sweep points).
     on_result : callable
         Called in this process with each result, in the order they finish.
-    client : dask.distributed.Client, optional
-        Run on this client's cluster (it is left open).
+    client : dask.distributed.Client or railhunt.studies.forkpool.ForkPool, optional
+        Run on this client's cluster, or on these forked workers (left open either way).
     scheduler : str, optional
         Address of a Dask scheduler to join (``tcp://host:8786``).
     workers : int, optional
@@ -474,6 +459,10 @@ def run_tasks(
         for item in items:
             on_result(task(item))
         return []
+    from railhunt.studies.forkpool import ForkPool
+
+    if isinstance(client, ForkPool):  # forked local workers, no scheduler
+        return client.run(task, items, on_result)
     from distributed import as_completed
 
     with ExitStack() as stack:

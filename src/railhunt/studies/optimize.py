@@ -224,7 +224,8 @@ def optimize(
     rows: dict[int, dict[str, Any]] = {}
     designs: list[tuple[int, int]] = []  # (point, generation)
     total_points = int(population) * int(generations) + (nominal is not None)
-    timings = {"pymoo_s": 0.0, "evaluations_s": 0.0, "study_s": 0.0}
+    timings = {"pymoo_s": 0.0, "evaluations_s": 0.0, "worker_evaluations_s": 0.0,
+               "study_s": 0.0}
     history: list[list[int]] = []
     start = None
     began = time.perf_counter()
@@ -275,6 +276,7 @@ def optimize(
             history.append([p.index for p in points])
         study.complete = not study.lost and all(p in study.rows for p in range(total_points))
         timings["evaluations_s"] = study.engine.evaluation_s
+        timings["worker_evaluations_s"] = study.engine.worker_evaluation_s
         timings["study_s"] = time.perf_counter() - began
         timings["railhunt_s"] = max(0.0, timings["study_s"] - timings["pymoo_s"]
                                     - timings["evaluations_s"])  # fmt: skip

@@ -102,8 +102,10 @@ class ParetoResult(ResultDisplay):
     timings : dict
         Where the run's wall time went (s): ``pymoo_s`` (NSGA-II asking for and told the
         designs), ``evaluations_s`` (the points evaluated in this process),
-        ``railhunt_s`` (the rest: the study machinery, and the wait for workers) and
-        ``study_s`` (the whole run).
+        ``railhunt_s`` (the rest: the study machinery, and the wait for workers),
+        ``study_s`` (the whole run) and ``worker_evaluations_s`` (the time forked local
+        workers spent evaluating, summed over them; 0 on a Dask cluster, which is not
+        timed).
     """
 
     factors: list[str]

@@ -126,6 +126,7 @@ class StudyRun:
         result.resumed = self.resumed
         result.lost_reasons = [reason for _, reason in self.lost]
         result.elapsed_s = time.perf_counter() - self.start
+        result.evaluation_s = self.engine.evaluation_s + self.engine.worker_evaluation_s
         return result
 
     # ------------------------------------------------------------------ closing

@@ -181,6 +181,10 @@ class SweepResults(ResultDisplay):
         ``resume=True``).
     elapsed_s : float
         Wall time of the run (s).
+    evaluation_s : float
+        Time (s) spent evaluating this run's points, summed over the processes that ran
+        them: this one and forked local workers (a Dask cluster's workers are not timed).
+        ``elapsed_s - evaluation_s / workers`` is what the study machinery cost.
     """
 
     rows: list[dict[str, Any]]
@@ -190,6 +194,7 @@ class SweepResults(ResultDisplay):
     resumed: int = 0
     lost_reasons: list[str] = field(default_factory=list)
     elapsed_s: float = 0.0
+    evaluation_s: float = 0.0
 
     @property
     def lost(self) -> int:

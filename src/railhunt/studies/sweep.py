@@ -168,11 +168,19 @@ def point_task(item: tuple[Point, float], vehicle: Vehicle, outputs: tuple[str, 
                           amplitude, output_options)  # fmt: skip
 
 
+_warmed_up = False  # this process has run warm_up (its compiled code stays loaded)
+
+
 def warm_up() -> None:
-    """Load (or compile) every numba function a point uses, in this process."""
+    """Load (or compile) every numba function a point uses, in this process (once: a
+    second call returns at once)."""
+    global _warmed_up
+    if _warmed_up:
+        return
     from railhunt.analysis.frequency import hunting_frequency
 
     hunting_frequency(Vehicle.paper2019(), 400.0)  # simulation, eigenvalues and shooting
+    _warmed_up = True
 
 
 def _json_values(values: object) -> object:

@@ -75,6 +75,11 @@ FORKED_SATURATION = 2.0
 #: Tasks per worker a study is split into at least (when its points allow): the last
 #: tasks to finish then keep every worker busy until the end.
 TASKS_PER_WORKER = 4
+#: The same for forked workers (:class:`~railhunt.studies.forkpool.ForkPool`), whose tasks
+#: cost about 20 us each against a millisecond on Dask: small tasks keep both workers busy
+#: to the end (a 24-point sweep in tasks of 3 points left one worker idle for up to three
+#: points' time, 0.6-2 s).
+FORKED_TASKS_PER_WORKER = 32
 
 Sink = Callable[[list[dict[str, Any]]], None]
 
@@ -92,13 +97,13 @@ def timed_chunk(items: Sequence[Any], task: Callable[[Any], dict[str, Any]]
     return rows, time.perf_counter() - t0
 
 
-def chunk_size(seconds_per_point: float, left: int, workers: int,
-               task_seconds: float) -> int:  # fmt: skip
+def chunk_size(seconds_per_point: float, left: int, workers: int, task_seconds: float,
+               tasks_per_worker: int = TASKS_PER_WORKER) -> int:  # fmt: skip
     """Points per task: about ``task_seconds`` of work, at least one point, and with more
-    than one worker at most ``left / (TASKS_PER_WORKER * workers)`` points (rounded up)."""
+    than one worker at most ``left / (tasks_per_worker * workers)`` points (rounded up)."""
     per_task = max(1, math.ceil(task_seconds / max(seconds_per_point, 1e-9)))
     if workers > 1:
-        per_task = min(per_task, max(1, math.ceil(left / (TASKS_PER_WORKER * workers))))
+        per_task = min(per_task, max(1, math.ceil(left / (tasks_per_worker * workers))))
     return min(per_task, max(1, left))
 
 
@@ -206,8 +211,10 @@ class TaskEngine:
         self.background: BackgroundCluster | None = None
         self.in_process: bool | None = None if client is None else False
         self.note: str | None = None
-        self.forked = False  # the tasks go to a forked local cluster (:meth:`_share`)
+        self.forked = False  # the tasks go to forked local workers (:meth:`_share`)
+        self.pool: Any = None  # those workers (railhunt.studies.forkpool.ForkPool)
         self.evaluation_s = 0.0  # evaluation time of the points run in this process
+        self._closed_pool_s = 0.0  # worker_evaluation_s of pools already closed
 
     # ------------------------------------------------------------------ in this process
 
@@ -245,7 +252,8 @@ class TaskEngine:
 
     def _size(self, left: int, workers: int) -> int:
         return chunk_size(self.seconds_per_point or 0.0, left, workers,
-                          self.options.task_seconds)  # fmt: skip
+                          self.options.task_seconds,
+                          FORKED_TASKS_PER_WORKER if self.forked else TASKS_PER_WORKER)
 
     def _run_here(self, task: Callable[[Any], dict[str, Any]], items: Sequence[Any],
                   sink: Sink) -> None:  # fmt: skip
@@ -312,8 +320,11 @@ class TaskEngine:
         # the linear critical speed ran 3-4 times slower than the next ones).
         gc.freeze()
         try:
-            self.background = BackgroundCluster(n, saturation=FORKED_SATURATION)
-            self.background.wait()
+            from railhunt.studies.forkpool import ForkPool
+
+            self.pool = ForkPool(n, saturation=int(FORKED_SATURATION))
+        except Exception as exc:  # noqa: BLE001 - the study can still finish here
+            self._cluster_failed(exc)
         finally:
             gc.unfreeze()
 
@@ -327,6 +338,8 @@ class TaskEngine:
                 and worker_start_method() == "fork")  # fmt: skip
 
     def _workers(self, client: Any) -> int:
+        if client is self.pool and client is not None:
+            return client.workers
         try:
             return max(1, len(client.scheduler_info().get("workers", {})))
         except Exception:  # noqa: BLE001 - a client without scheduler info: count one
@@ -392,19 +405,16 @@ class TaskEngine:
 
         Until a point has been timed, each worker first gets one point, timed where it runs
         (:func:`timed_chunk`); then the remaining points go in tasks of about
-        ``task_seconds`` (:meth:`_distribute`).
+        ``task_seconds``, sent as soon as the first point is timed (the others still
+        running).
         """
-        from railhunt.studies.execute import run_tasks
-
-        try:
-            client = self.background.client()
-        except Exception as exc:  # noqa: BLE001 - the study can still finish here
-            self._cluster_failed(exc)
+        pool = self.pool
+        if pool is None:  # the workers did not start (_cluster_failed said why)
             self._run_here(task, items, sink)
             return []
         if self.seconds_per_point is not None:
-            return self._distribute(client, task, items, sink)
-        n = self._workers(client)
+            return self._distribute(pool, task, items, sink)
+        n = pool.workers
         first, rest = items[:n], items[n:]
 
         def timed(result: tuple[list[dict[str, Any]], float]) -> None:
@@ -413,10 +423,20 @@ class TaskEngine:
                 self.seconds_per_point = seconds / len(rows)
             sink(rows)
 
-        lost = run_tasks(functools.partial(timed_chunk, task=task), [[x] for x in first],
-                         timed, client=client)  # type: ignore[arg-type]
-        lost = [(item, reason) for group, reason in lost for item in group]
-        return lost + (self._distribute(client, task, rest, sink) if rest else [])
+        def more(drained: bool) -> list[list[Any]] | None:
+            # the rest, in tasks sized by the first point timed (or, when every first point
+            # was lost, by none)
+            nonlocal rest
+            if not rest or (self.seconds_per_point is None and not drained):
+                return None
+            k = self._size(len(rest), n)
+            groups = [rest[j:j + k] for j in range(0, len(rest), k)]
+            rest = []
+            return groups
+
+        lost = pool.run(functools.partial(timed_chunk, task=task), [[x] for x in first], timed,
+                        more)  # fmt: skip
+        return [(item, reason) for group, reason in lost for item in group]
 
     def _cluster_failed(self, exc: BaseException) -> None:
         text = " ".join(str(exc).split())[:200]
@@ -428,8 +448,18 @@ class TaskEngine:
         self.forked = False
         self.close()
 
+    @property
+    def worker_evaluation_s(self) -> float:
+        """Time (s) forked local workers spent evaluating points, summed over the workers
+        (not measured on a Dask cluster: 0 there)."""
+        return self._closed_pool_s + (self.pool.busy_s if self.pool is not None else 0.0)
+
     def close(self) -> None:
-        """Close a local cluster this engine started."""
+        """Close the local workers or cluster this engine started."""
+        if self.pool is not None:
+            pool, self.pool = self.pool, None
+            self._closed_pool_s += pool.busy_s
+            pool.close()
         if self.background is not None:
             background, self.background = self.background, None
             background.close()

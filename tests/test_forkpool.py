@@ -1,0 +1,177 @@
+"""Forked local workers (railhunt.studies.forkpool): results, errors, dead workers, streams,
+signals, and no process left behind when the study's process is killed."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+
+import pytest
+
+from railhunt.studies.execute import run_tasks
+from railhunt.studies.forkpool import ALLOWED_DEATHS, ForkPool
+
+pytestmark = pytest.mark.skipif(not sys.platform.startswith("linux"),
+                                reason="forked workers: Linux")  # fmt: skip
+
+
+def _square(x: int) -> dict[str, int]:
+    return {"x": x, "y": x * x, "pid": os.getpid()}
+
+
+def test_every_item_once_from_several_processes():
+    rows = []
+    with ForkPool(2) as pool:
+        lost = run_tasks(_square, list(range(50)), rows.append, client=pool)
+        assert pool.workers == 2
+    assert lost == []
+    assert sorted(r["x"] for r in rows) == list(range(50))
+    assert all(r["y"] == r["x"] ** 2 for r in rows)
+    assert len({r["pid"] for r in rows}) == 2 and os.getpid() not in {r["pid"] for r in rows}
+
+
+def test_a_task_that_raises_is_lost_with_its_error_and_the_others_finish():
+    def task(x):  # a closure: sent to the workers by value
+        if x == 3:
+            raise ValueError("no third point")
+        return {"x": x}
+
+    rows = []
+    with ForkPool(2) as pool:
+        lost = pool.run(task, list(range(8)), rows.append)
+    assert sorted(r["x"] for r in rows) == [0, 1, 2, 4, 5, 6, 7]
+    assert lost == [(3, "ValueError: no third point")]
+
+
+def test_a_task_that_kills_its_workers_is_lost_the_task_behind_it_is_not():
+    """The killer takes ALLOWED_DEATHS workers with it, then is given up; the tasks queued
+    behind it on the same worker run again, unmarked; the pool keeps its size."""
+    def task(x):
+        if x == 1:
+            os._exit(3)
+        return {"x": x}
+
+    rows = []
+    with ForkPool(1, saturation=3) as pool:  # one worker: 2 and 3 always queue behind 1
+        before = pool.pids()
+        lost = pool.run(task, [0, 1, 2, 3], rows.append)
+        assert pool.workers == 1 and pool.pids() != before
+    assert sorted(r["x"] for r in rows) == [0, 2, 3]
+    assert len(lost) == 1 and lost[0][0] == 1
+    assert lost[0][1].startswith("KilledWorker") and f"{ALLOWED_DEATHS} times" in lost[0][1]
+    assert "exit code 3" in lost[0][1]
+
+
+def test_workers_ignore_ctrl_c_and_write_to_streams_of_their_own():
+    def look(_):
+        print("a worker's line", flush=True)
+        return (signal.getsignal(signal.SIGINT), id(sys.stdout), id(sys.stderr),
+                sys.stdout.fileno(), sys.stderr.fileno())  # fmt: skip
+
+    out = []
+    with ForkPool(1) as pool:
+        pool.run(look, [0], out.append)
+    handler, out_id, err_id, out_fd, err_fd = out[0]
+    assert handler == signal.SIG_IGN
+    assert out_id != id(sys.stdout) and err_id != id(sys.stderr)
+    assert (out_fd, err_fd) == (sys.stdout.fileno(), sys.stderr.fileno())
+
+
+def test_an_error_in_the_results_handler_stops_the_workers():
+    def sink(row):
+        raise RuntimeError("disk full")
+
+    pool = ForkPool(2)
+    pids = pool.pids()
+    with pytest.raises(RuntimeError, match="disk full"):
+        pool.run(_square, list(range(10)), sink)
+    assert pool.workers == 0
+    for pid in pids:
+        with pytest.raises((ProcessLookupError, ChildProcessError)):
+            _wait_gone(pid, 5.0)
+
+
+def _wait_gone(pid: int, timeout: float) -> None:
+    """Raise ProcessLookupError once ``pid`` is gone (a zombie of ours counts as gone)."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        try:
+            done, _ = os.waitpid(pid, os.WNOHANG)
+        except ChildProcessError:
+            done = 0
+            os.kill(pid, 0)  # not our child: ProcessLookupError when it is gone
+        if done:
+            raise ProcessLookupError(pid)
+        time.sleep(0.05)
+
+
+def test_workers_exit_when_the_study_process_is_killed(tmp_path):
+    """SIGKILL leaves no worker behind: each sees the end of its pipe and exits."""
+    script = tmp_path / "hold.py"
+    script.write_text(textwrap.dedent("""
+        import sys, time
+        from railhunt.studies.forkpool import ForkPool
+        if __name__ == "__main__":
+            pool = ForkPool(2)
+            print(*pool.pids(), flush=True)
+            pool.run(lambda x: time.sleep(60), [0, 1, 2, 3], print)
+    """))
+    proc = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE, text=True)
+    pids = [int(p) for p in proc.stdout.readline().split()]
+    assert len(pids) == 2
+    time.sleep(0.3)
+    proc.kill()
+    proc.wait(timeout=30)
+    # The workers are busy for 60 s: they must be gone long before.
+    deadline = time.monotonic() + 20
+    alive = set(pids)
+    while alive and time.monotonic() < deadline:
+        for pid in list(alive):
+            try:
+                os.kill(pid, 0)
+                with open(f"/proc/{pid}/stat") as f:
+                    if f.read().split()[2] == "Z":
+                        alive.discard(pid)
+            except (ProcessLookupError, FileNotFoundError):
+                alive.discard(pid)
+        time.sleep(0.2)
+    assert not alive, f"workers {alive} outlived the study's process"
+
+
+def test_bad_worker_count_is_one_clear_line():
+    with pytest.raises(ValueError, match=r"workers = 0 is invalid: must be an integer >= 1"):
+        ForkPool(0)
+
+
+def test_each_worker_gets_a_task_before_any_gets_a_second():
+    """Two tasks on two workers run at the same time, not one behind the other."""
+    def stamp(_):
+        t0 = time.monotonic()
+        time.sleep(0.3)
+        return {"pid": os.getpid(), "start": t0}
+
+    rows = []
+    with ForkPool(2, saturation=2) as pool:
+        pool.run(stamp, [0, 1], rows.append)
+    assert len({r["pid"] for r in rows}) == 2
+    assert abs(rows[0]["start"] - rows[1]["start"]) < 0.2
+
+
+def test_more_items_join_the_run_and_a_drained_run_is_told():
+    calls = []
+
+    def more(drained):
+        calls.append(drained)
+        if len(calls) == 3:
+            return [10, 11]
+        return None
+
+    rows = []
+    with ForkPool(2) as pool:
+        lost = pool.run(_square, [0, 1], rows.append, more)
+    assert lost == [] and sorted(r["x"] for r in rows) == [0, 1, 10, 11]
+    assert calls[-1] is True  # the run ended when told it was drained and got nothing
