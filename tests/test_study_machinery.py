@@ -235,6 +235,57 @@ def test_a_study_killed_in_the_middle_of_a_task_resumes_to_the_same_file(tmp_pat
     assert part.read_bytes() == ref.read_bytes()
 
 
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="forked workers: Linux")
+def test_a_study_on_forked_workers_killed_mid_task_resumes_to_the_same_file(tmp_path):
+    """SIGKILL of the study's process while 2 forked workers compute: no worker computes
+    on, the file holds whole points, each once, and the resumed file is byte-identical to
+    an uninterrupted run's."""
+    samples, per_point, task = 16, 0.02, 0.1  # 80 points
+    pids = tmp_path / "pids.txt"
+    setup = ("tasks.FORK_START_S = 0.0  # as if workers cost nothing\n"
+             "    import os\n"
+             "    real = slow\n"
+             "    def slow(**x):\n"
+             f"        open({str(pids)!r}, 'a').write(f'{{os.getpid()}}\\n')\n"
+             "        return real(**x)")  # fmt: skip
+    ref, part = tmp_path / "ref.csv", tmp_path / "part.csv"
+    for name, out, resume in (("ref", ref, False), ("part", part, False),
+                              ("resume", part, True)):  # fmt: skip
+        (tmp_path / f"{name}.py").write_text(_script(out, sleep=per_point, workers=2,
+                                                     task=task, samples=samples,
+                                                     resume=resume, setup=setup))  # fmt: skip
+    env = {**os.environ, "RAILHUNT_WORKER_START": "fork"}
+    done = subprocess.run([sys.executable, "ref.py"], cwd=tmp_path, capture_output=True,
+                          text=True, timeout=300, env=env)  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    pids.unlink()
+    proc = subprocess.Popen([sys.executable, "part.py"], cwd=tmp_path, env=env,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)  # fmt: skip
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline:
+        if part.exists() and len(part.read_text().splitlines()) >= 11:
+            break
+        time.sleep(0.01)
+    time.sleep(per_point * 2)  # in the middle of the workers' tasks
+    proc.send_signal(signal.SIGKILL)
+    proc.communicate(timeout=60)
+    assert proc.returncode == -signal.SIGKILL
+    workers = {int(line) for line in pids.read_text().split()} - {proc.pid}
+    assert workers, "the points ran on forked workers"
+    deadline = time.monotonic() + 20
+    while time.monotonic() < deadline and any(Path(f"/proc/{w}").exists() for w in workers):
+        time.sleep(0.05)
+    assert not any(Path(f"/proc/{w}").exists() for w in workers), "a worker computes on"
+    kept = [r["point"] for r in railhunt.read_results(part).rows]
+    assert 0 < len(kept) < samples * 5 and len(set(kept)) == len(kept)
+    assert len(part.read_text().splitlines()) == 1 + len(kept), "every line a whole point"
+    resumed = subprocess.run([sys.executable, "resume.py"], cwd=tmp_path, capture_output=True,
+                             text=True, timeout=300, env=env)  # fmt: skip
+    assert resumed.returncode == 0, resumed.stderr
+    assert resumed.stdout.split() == [str(samples * 5 - len(kept)), str(len(kept))]
+    assert part.read_bytes() == ref.read_bytes()
+
+
 def test_the_engine_estimates_the_cost_of_a_point():
     engine = tasks.TaskEngine(StudyOptions(workers=1), None, None, lambda: 10)
     rows = []
