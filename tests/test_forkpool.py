@@ -47,6 +47,33 @@ def test_a_task_that_raises_is_lost_with_its_error_and_the_others_finish():
     assert lost == [(3, "ValueError: no third point")]
 
 
+class _Unpicklable:
+    """A task that cannot be pickled: only a worker that has it from the fork can run it."""
+
+    def __reduce__(self):
+        raise TypeError("this task cannot be pickled")
+
+    def __call__(self, x: int) -> dict[str, int]:
+        return {"x": x, "pid": os.getpid()}
+
+
+def test_functions_given_at_the_start_are_inherited_not_sent():
+    """A function given to the pool at its start runs on the workers without pickling,
+    also on a worker forked later in place of a dead one; another one is still sent."""
+    fn = _Unpicklable()
+    rows = []
+    with ForkPool(2, functions=(fn,)) as pool:
+        assert pool.run(fn, list(range(6)), rows.append) == []
+        os.kill(pool.pids()[0], signal.SIGKILL)
+        time.sleep(0.2)
+        assert pool.run(fn, list(range(6, 12)), rows.append) == []
+        assert pool.run(_square, [3], rows.append) == []
+        with pytest.raises(TypeError, match="cannot be pickled"):  # not given at the start
+            pool.run(_Unpicklable(), [0], rows.append)
+    assert sorted(r["x"] for r in rows) == sorted([*range(12), 3])
+    assert len({r["pid"] for r in rows}) >= 2
+
+
 def test_a_task_that_kills_its_workers_is_lost_the_task_behind_it_is_not():
     """The killer takes ALLOWED_DEATHS workers with it, then is given up; the tasks queued
     behind it on the same worker run again, unmarked; the pool keeps its size."""

@@ -332,9 +332,9 @@ def test_a_vehicle_study_on_forked_workers_writes_the_same_file(tmp_path, monkey
     started, pids = [], []
     real = ForkPool.__init__
 
-    def spy(self, workers, saturation=2):
-        started.append((workers, saturation))
-        real(self, workers, saturation)
+    def spy(self, workers, saturation=2, functions=()):
+        started.append((workers, saturation, len(functions)))
+        real(self, workers, saturation, functions)
         pids.extend(self.pids())
 
     monkeypatch.setattr(ForkPool, "__init__", spy)
@@ -346,7 +346,7 @@ def test_a_vehicle_study_on_forked_workers_writes_the_same_file(tmp_path, monkey
     assert started == []
     two = railhunt.sweep(vehicle, values, ["linear_critical_speed"], workers=2,
                          out=tmp_path / "two.csv")  # fmt: skip
-    assert started == [(2, int(tasks.FORKED_SATURATION))] and len(set(pids)) == 2
+    assert started == [(2, int(tasks.FORKED_SATURATION), 2)] and len(set(pids)) == 2
     assert two.computed == 16 and not two.lost_reasons
     assert (tmp_path / "one.csv").read_bytes() == (tmp_path / "two.csv").read_bytes()
     assert [r["linear_critical_speed_kmh"] for r in one.rows] == [

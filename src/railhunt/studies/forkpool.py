@@ -59,28 +59,36 @@ def fresh_standard_streams() -> None:
                                             errors=stream.errors, line_buffering=True))
 
 
-def _die_with(parent: int) -> None:
-    """Ask the kernel to kill this process when the thread that forked it ends (Linux's
-    ``PR_SET_PDEATHSIG``): a study killed with SIGKILL leaves no worker computing on."""
+def _prctl() -> Any:
+    """Linux's ``prctl`` from the C library, looked up in this process before it forks
+    (None where there is none)."""
     try:
         import ctypes
 
-        libc = ctypes.CDLL(None, use_errno=True)
-        libc.prctl(1, signal.SIGKILL, 0, 0, 0)  # PR_SET_PDEATHSIG
+        return ctypes.CDLL(None, use_errno=True).prctl
     except (OSError, AttributeError):  # not Linux's C library: the pipe's end still stops it
-        pass
+        return None
+
+
+def _die_with(parent: int, prctl: Any) -> None:
+    """Ask the kernel to kill this process when the thread that forked it ends (Linux's
+    ``PR_SET_PDEATHSIG``): a study killed with SIGKILL leaves no worker computing on."""
+    if prctl is not None:
+        prctl(1, signal.SIGKILL, 0, 0, 0)  # PR_SET_PDEATHSIG
     if os.getppid() != parent:  # the study died before the request was made
         os._exit(1)
 
 
-def _serve(conn: Connection, others: list[Connection], parent: int) -> None:
-    """A worker's loop: run each task it is sent, send back its result or its error."""
-    _die_with(parent)
+def _serve(conn: Connection, others: list[Connection], parent: int,
+           inherited: dict[int, Callable[[Any], Any]], prctl: Any) -> None:  # fmt: skip
+    """A worker's loop: run each task it is sent, send back its result or its error
+    (``inherited``: the functions it has from the fork, by key)."""
+    _die_with(parent, prctl)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     fresh_standard_streams()
     for other in others:  # the pipes of the workers forked before this one
         other.close()
-    functions: dict[int, Callable[[Any], Any]] = {}
+    functions: dict[int, Callable[[Any], Any]] = dict(inherited)
     while True:
         try:
             message = conn.recv_bytes()
@@ -111,16 +119,19 @@ def _serve(conn: Connection, others: list[Connection], parent: int) -> None:
 class _Worker:
     """One forked process, its end of the pipe and the tasks it holds."""
 
-    def __init__(self, others: list[Connection]) -> None:
+    def __init__(self, others: list[Connection], inherited: dict[int, Callable[[Any], Any]],
+                 prctl: Any) -> None:  # fmt: skip
         ctx = multiprocessing.get_context("fork")
         here, there = ctx.Pipe(duplex=True)
-        self.process = ctx.Process(target=_serve, args=(there, others, os.getpid()), daemon=True,
-                                   name="railhunt-worker")  # fmt: skip
+        self.process = ctx.Process(target=_serve, args=(there, others, os.getpid(), inherited,
+                                                         prctl),
+                                   daemon=True, name="railhunt-worker")  # fmt: skip
         self.process.start()
         there.close()  # only the worker holds its end: its death is an EOF here
         self.conn = here
-        self.functions: set[int] = set()
+        self.functions: set[int] = set(inherited)  # the function keys it knows
         self.held: collections.deque[int] = collections.deque()  # task keys in flight
+        self.idle_since: float | None = None  # when it last ran out of work (perf_counter)
 
     def send(self, message: tuple[str, int, Any]) -> None:
         self.conn.send_bytes(pickle.dumps(message, protocol=pickle.HIGHEST_PROTOCOL))
@@ -136,6 +147,10 @@ class ForkPool:
     saturation : int
         Tasks each worker holds at once: the one it runs and the next ones, so that it
         starts its next task without waiting for this process.
+    functions : sequence of callables
+        Functions :meth:`run` will be given: the workers have them from the fork, not
+        pickled and sent (a study's task, which carries its vehicle: about 10 ms less
+        before the first point).
 
     Fork from a thread that holds no lock a worker would need (the study's main thread
     while it computes nothing); objects that exist at the fork are best frozen out of the
@@ -143,7 +158,8 @@ class ForkPool:
     page of this process.
     """
 
-    def __init__(self, workers: int, saturation: int = 2) -> None:
+    def __init__(self, workers: int, saturation: int = 2,
+                 functions: Sequence[Callable[[Any], Any]] = ()) -> None:  # fmt: skip
         if not (isinstance(workers, int) and workers >= 1):
             raise ValueError(f"workers = {workers!r} is invalid: must be an integer >= 1")
         self._owner_pid = os.getpid()
@@ -151,11 +167,21 @@ class ForkPool:
         #: Time (s) the workers spent running tasks, summed over the workers (the tasks
         #: whose result arrived).
         self.busy_s = 0.0
+        #: Time (s) workers stood idle at the end of runs, with nothing left to give them,
+        #: while another worker still computed (summed over the workers): the study's
+        #: tail, set by how its last points' costs differ, not by the pool.
+        self.tail_s = 0.0
         self._workers: list[_Worker] = []
         # id(fn) -> (key, fn): the function is kept, so that its id is never reused
         self._function_keys: dict[int, tuple[int, Callable[[Any], Any]]] = {}
         self._functions: dict[int, bytes] = {}  # key -> pickled function
         self._next_key = 0
+        self._inherited: dict[int, Callable[[Any], Any]] = {}
+        self._prctl = _prctl()
+        for fn in functions:
+            if id(fn) not in self._function_keys:
+                key = self._new_key(fn)
+                self._inherited[key] = fn
         try:
             for _ in range(workers):
                 self._fork()
@@ -179,7 +205,8 @@ class ForkPool:
             with warnings.catch_warnings():  # Python >= 3.12 on a process with threads
                 warnings.filterwarnings("ignore", message=".*multi-threaded.*fork",
                                         category=DeprecationWarning)  # fmt: skip
-                worker = _Worker([w.conn for w in self._workers])
+                worker = _Worker([w.conn for w in self._workers], self._inherited,
+                                 self._prctl)  # fmt: skip
         finally:
             if frozen:
                 gc.enable()
@@ -192,10 +219,14 @@ class ForkPool:
             return known[0]
         import cloudpickle
 
+        key = self._new_key(fn)
+        self._functions[key] = cloudpickle.dumps(fn)
+        return key
+
+    def _new_key(self, fn: Callable[[Any], Any]) -> int:
         key = self._next_key
         self._next_key += 1
         self._function_keys[id(fn)] = (key, fn)
-        self._functions[key] = cloudpickle.dumps(fn)
         return key
 
     def run(self, fn: Callable[[Any], Any], items: Sequence[Any],
@@ -245,6 +276,8 @@ class ForkPool:
                     self.busy_s += seconds
                     worker.held.remove(task)
                     left -= 1
+                    if not worker.held and not pending:
+                        worker.idle_since = time.perf_counter()
                     if status == "ok":
                         on_result(value)
                     else:
@@ -252,6 +285,11 @@ class ForkPool:
         except BaseException:
             self.close(wait=False)
             raise
+        end = time.perf_counter()
+        for worker in self._workers:
+            if worker.idle_since is not None:
+                self.tail_s += end - worker.idle_since
+                worker.idle_since = None
         return lost
 
     def _feed(self, worker: _Worker, key_fn: int, items: Sequence[Any],
@@ -268,6 +306,7 @@ class ForkPool:
                 pending.appendleft(task)
                 raise
             worker.held.append(task)
+            worker.idle_since = None
 
     def _replace(self, worker: _Worker, items: Sequence[Any], pending: collections.deque,
                  deaths: collections.Counter, lost: list[tuple[Any, str]]) -> int:  # fmt: skip

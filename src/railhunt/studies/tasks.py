@@ -213,6 +213,8 @@ class TaskEngine:
         self.note: str | None = None
         self.forked = False  # the tasks go to forked local workers (:meth:`_share`)
         self.pool: Any = None  # those workers (railhunt.studies.forkpool.ForkPool)
+        self._pool_task: Any = None  # the task whose chunk functions the workers inherited
+        self._pool_fns: dict[str, Callable[..., Any]] = {}
         self.evaluation_s = 0.0  # evaluation time of the points run in this process
         self._closed_pool_s = 0.0  # worker_evaluation_s of pools already closed
 
@@ -280,7 +282,7 @@ class TaskEngine:
             self.in_process = True
             return
         if forked:  # a forked worker imports nothing again: any main program will do
-            self._fork(n)
+            self._fork(n, task)
             return
         why = unimportable_main()
         if why is not None:
@@ -305,8 +307,9 @@ class TaskEngine:
                 raise KeyboardInterrupt from exc
             raise
 
-    def _fork(self, n: int) -> None:
-        """Warm up, then start a local cluster of ``n`` forked workers.
+    def _fork(self, n: int, task: Callable[[Any], dict[str, Any]]) -> None:
+        """Warm up, then fork ``n`` local workers, which have ``task`` (in the chunk
+        functions :meth:`_share` and :meth:`_distribute` send) from the fork.
 
         Forked workers copy this process, compiled code included (nothing to prime). This
         thread waits while they start, so that it holds no lock they would inherit held (a
@@ -322,7 +325,11 @@ class TaskEngine:
         try:
             from railhunt.studies.forkpool import ForkPool
 
-            self.pool = ForkPool(n, saturation=int(FORKED_SATURATION))
+            self._pool_task = task
+            self._pool_fns = {"timed": functools.partial(timed_chunk, task=task),
+                              "chunk": functools.partial(run_chunk, task=task)}
+            self.pool = ForkPool(n, saturation=int(FORKED_SATURATION),
+                                 functions=tuple(self._pool_fns.values()))  # fmt: skip
         except Exception as exc:  # noqa: BLE001 - the study can still finish here
             self._cluster_failed(exc)
         finally:
@@ -357,7 +364,7 @@ class TaskEngine:
         if self.in_process is None and self.seconds_per_point is None and self._fork_early():
             from railhunt.studies.execute import check_workers
 
-            self._fork(check_workers(self.options.workers))
+            self._fork(check_workers(self.options.workers), task)
         if self.forked:
             return self._share(task, items, sink)
         i = 0
@@ -395,7 +402,7 @@ class TaskEngine:
 
         k = self._size(len(items), self._workers(client))
         groups = [items[j:j + k] for j in range(0, len(items), k)]
-        lost = run_tasks(functools.partial(run_chunk, task=task), groups, sink,
+        lost = run_tasks(self._chunk_fn("chunk", run_chunk, task, client), groups, sink,
                          client=client)  # type: ignore[arg-type]
         return [(item, reason) for group, reason in lost for item in group]
 
@@ -434,9 +441,17 @@ class TaskEngine:
             rest = []
             return groups
 
-        lost = pool.run(functools.partial(timed_chunk, task=task), [[x] for x in first], timed,
-                        more)  # fmt: skip
+        lost = pool.run(self._chunk_fn("timed", timed_chunk, task, pool), [[x] for x in first],
+                        timed, more)  # fmt: skip
         return [(item, reason) for group, reason in lost for item in group]
+
+    def _chunk_fn(self, kind: str, chunk: Callable[..., Any], task: Callable[[Any], Any],
+                  client: Any) -> Callable[..., Any]:  # fmt: skip
+        """``chunk`` with ``task``: the very function the forked workers inherited when
+        these are the workers and that the task, a new one otherwise."""
+        if client is not None and client is self.pool and task is self._pool_task:
+            return self._pool_fns[kind]
+        return functools.partial(chunk, task=task)
 
     def _cluster_failed(self, exc: BaseException) -> None:
         text = " ".join(str(exc).split())[:200]
