@@ -16,7 +16,7 @@ linear critical speed about 10 ms, a nonlinear search a few tenths of a second. 
    study.py``), which worker processes cannot import again (one line says so).
    On Linux the local cluster's workers are forked
    (:func:`railhunt.studies.execute.worker_start_method`): copies of this process with its
-   compiled code, up in about 0.3 s (:data:`FORK_START_S`); a vehicle study of
+   compiled code, up in a few milliseconds (:data:`FORK_START_S`); a vehicle study of
    :data:`EARLY_FORK_POINTS` points or more forks them before any point is timed, and its
    first tasks (one point per worker) are timed on the workers. Spawned workers are
    started in the background while this process goes on evaluating points; once they are
@@ -57,12 +57,14 @@ CLUSTER_START_S = 3.0
 #: folder), but sweeps of 24 and 48 points (6 s and 14-15 s of evaluations) still took as
 #: long or longer on 2 new workers as in one process (0.91x and 0.92-1.00x).
 WORKER_CODE_S = 15.0
-#: Estimated cost (s) of a local cluster of forked workers (Linux,
-#: :func:`railhunt.studies.execute.worker_start_method`): it starts in 0.1-0.35 s (0.2 s of
-#: it the first import of Dask) and its workers have this process's compiled code (2-core
-#: machine). A study goes to forked workers when the time they save, ``(1 - 1/workers)`` of
+#: Estimated cost (s) of forked local workers (Linux,
+#: :func:`railhunt.studies.execute.worker_start_method`;
+#: :class:`~railhunt.studies.forkpool.ForkPool`): 2 start in 6-10 ms and stop in 4-8 ms,
+#: and have this process's compiled code (2-core machine); a Sobol study of 1 ms points
+#: broke even at 80 points (0.09 s either way) and gained from 160 (0.13 s against
+#: 0.17 s). A study goes to forked workers when the time they save, ``(1 - 1/workers)`` of
 #: its remaining points' cost, is larger.
-FORK_START_S = 0.3
+FORK_START_S = 0.04
 #: A vehicle study (one that loads compiled model code) with at least this many points
 #: left forks its workers before timing any point, when forked workers are available: its
 #: points cost 10 ms (a linear critical speed) to seconds, so that the workers pay off, and
