@@ -153,9 +153,10 @@ class ForkPool:
         before the first point).
 
     Fork from a thread that holds no lock a worker would need (the study's main thread
-    while it computes nothing); objects that exist at the fork are best frozen out of the
-    garbage collector first (``gc.freeze``), or a worker's first collection copies every
-    page of this process.
+    while it computes nothing), and close the pool before that thread ends: the kernel
+    ends the workers with the thread that forked them (``PR_SET_PDEATHSIG``). Objects that
+    exist at the fork are best frozen out of the garbage collector first (``gc.freeze``),
+    or a worker's first collection copies every page of this process.
     """
 
     def __init__(self, workers: int, saturation: int = 2,
