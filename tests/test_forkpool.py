@@ -191,9 +191,9 @@ def test_each_worker_gets_a_task_before_any_gets_a_second():
 def test_more_items_join_the_run_and_a_drained_run_is_told():
     calls = []
 
-    def more(drained):
+    def more(drained):  # more items once, when the first ones are done
         calls.append(drained)
-        if len(calls) == 3:
+        if drained and calls.count(True) == 1:
             return [10, 11]
         return None
 
@@ -201,4 +201,164 @@ def test_more_items_join_the_run_and_a_drained_run_is_told():
     with ForkPool(2) as pool:
         lost = pool.run(_square, [0, 1], rows.append, more)
     assert lost == [] and sorted(r["x"] for r in rows) == [0, 1, 10, 11]
-    assert calls[-1] is True  # the run ended when told it was drained and got nothing
+    assert calls[0] is False  # asked before any result
+    assert calls.count(True) == 2 and calls[-1] is True  # ended when drained and given none
+
+
+def _gc_state(_):
+    import gc
+
+    return {"enabled": gc.isenabled(), "frozen": gc.get_freeze_count()}
+
+
+def test_workers_collect_garbage_and_leave_what_they_inherit_out_of_it():
+    """A worker's garbage collector is on (it is off across the fork) and what it
+    inherited is frozen in it; this process's own frozen objects are left as they are."""
+    import gc
+
+    keep = [[i] for i in range(1000)]
+    gc.freeze()
+    try:
+        frozen = gc.get_freeze_count()
+        rows = []
+        with ForkPool(2) as pool:
+            pool.run(_gc_state, [0, 1], rows.append)
+            os.kill(pool.pids()[0], signal.SIGKILL)  # a worker forked in its place
+            time.sleep(0.2)
+            pool.run(_gc_state, [2, 3, 4, 5], rows.append)
+        assert gc.get_freeze_count() == frozen and gc.isenabled()
+    finally:
+        gc.unfreeze()
+    assert len(rows) == 6 and all(r["enabled"] for r in rows)
+    assert all(r["frozen"] >= frozen > len(keep) for r in rows)
+
+
+def _run_script(tmp_path, body: str, timeout: float = 60.0) -> subprocess.CompletedProcess:
+    script = tmp_path / "script.py"
+    script.write_text(textwrap.dedent(body))
+    return subprocess.run([sys.executable, str(script)], capture_output=True, text=True,
+                          timeout=timeout, cwd=tmp_path)  # fmt: skip
+
+
+def test_a_worker_killed_while_it_holds_nothing_does_not_hang_the_run(tmp_path):
+    """One worker, killed while this process handles its result: the run goes on with a
+    new worker (it used to wait on no pipe at all)."""
+    done = _run_script(tmp_path, """
+        import os, signal, time
+        from railhunt.studies.forkpool import ForkPool
+        if __name__ == "__main__":
+            for saturation in (1, 2):
+                pool = ForkPool(1, saturation=saturation)
+                rows = []
+                def sink(row):
+                    rows.append(row)
+                    if row == 0:
+                        os.kill(pool.pids()[0], signal.SIGKILL)
+                        time.sleep(0.2)
+                lost = pool.run(lambda x: x, [0, 1, 2], sink)
+                pool.close()
+                print(saturation, sorted(rows), lost)
+    """)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split("\n")[:2] == ["1 [0, 1, 2] []", "2 [0, 1, 2] []"]
+
+
+def test_a_closed_pool_says_so():
+    pool = ForkPool(1)
+    pool.close()
+    with pytest.raises(RuntimeError, match="closed"):
+        pool.run(_square, [1], print)
+
+
+def test_large_tasks_and_large_results_do_not_deadlock(tmp_path):
+    """Tasks and results larger than a pipe's buffer both ways (a task sent to a busy
+    worker blocked while that worker blocked on sending its result)."""
+    done = _run_script(tmp_path, """
+        from railhunt.studies.forkpool import ForkPool
+        if __name__ == "__main__":
+            items = [bytes([k]) * 1_000_000 for k in range(6)]
+            rows = []
+            with ForkPool(1, saturation=2) as pool:
+                lost = pool.run(lambda b: b, items, rows.append)
+            print(len(rows), lost, sorted(r[0] for r in rows))
+    """)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == "6 [] [0, 1, 2, 3, 4, 5]"
+
+
+def test_a_result_sent_before_its_worker_died_is_kept_and_not_run_again(tmp_path):
+    """A worker sends its result and dies before this process reads it: the result is
+    read (not thrown away and the task run again on a death mark)."""
+    done = _run_script(tmp_path, """
+        import os, threading, time
+        from railhunt.studies.forkpool import ForkPool
+        def task(x):
+            with open("runs.txt", "a") as f:
+                f.write(f"{x}\\n")
+            if x == "c":  # dies just after sending this result
+                threading.Timer(0.05, os._exit, (1,)).start()
+            return x
+        if __name__ == "__main__":
+            rows = []
+            def sink(row):
+                rows.append(row)
+                if row == "b":
+                    time.sleep(0.5)  # meanwhile "c" is done and its worker dead
+            with ForkPool(1, saturation=2) as pool:
+                lost = pool.run(task, list("abcde"), sink)
+            print("".join(rows), lost, open("runs.txt").read().split())
+    """)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == "abcde [] ['a', 'b', 'c', 'd', 'e']"
+
+
+def test_workers_exit_on_the_pipes_end_without_the_death_signal(tmp_path):
+    """Without PR_SET_PDEATHSIG a worker still exits when the study's process is killed:
+    it holds no copy of this process's end of its own pipe."""
+    script = tmp_path / "hold.py"
+    script.write_text(textwrap.dedent("""
+        import time
+        from railhunt.studies import forkpool
+        if __name__ == "__main__":
+            forkpool._prctl = lambda: None
+            pool = forkpool.ForkPool(2)
+            print(*pool.pids(), flush=True)
+            time.sleep(60)
+    """))
+    proc = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE, text=True)
+    pids = [int(p) for p in proc.stdout.readline().split()]
+    proc.kill()
+    proc.wait(timeout=30)
+    deadline = time.monotonic() + 20
+    alive = set(pids)
+    while alive and time.monotonic() < deadline:
+        for pid in list(alive):
+            try:
+                with open(f"/proc/{pid}/stat") as f:
+                    if f.read().split()[2] == "Z":
+                        alive.discard(pid)
+            except FileNotFoundError:
+                alive.discard(pid)
+        time.sleep(0.1)
+    assert not alive, f"workers {alive} outlived the study's process"
+
+
+def test_a_ctrl_c_while_a_worker_starts_leaves_no_worker(monkeypatch):
+    from railhunt.studies import forkpool
+
+    started = []
+    real = forkpool._Worker.start
+
+    def start(self):
+        real(self)
+        started.append(self.process.pid)
+        if len(started) == 2:
+            raise KeyboardInterrupt
+
+    monkeypatch.setattr(forkpool._Worker, "start", start)
+    with pytest.raises(KeyboardInterrupt):
+        ForkPool(3)
+    assert len(started) == 2
+    for pid in started:
+        with pytest.raises((ProcessLookupError, ChildProcessError)):
+            _wait_gone(pid, 5.0)

@@ -36,10 +36,19 @@ from collections.abc import Callable, Sequence
 from multiprocessing.connection import Connection, wait
 from typing import Any
 
-__all__ = ["ALLOWED_DEATHS", "ForkPool", "fresh_standard_streams"]
+__all__ = ["ALLOWED_DEATHS", "QUEUED_TASK_BYTES", "STARTUP_DEATHS", "ForkPool",
+           "fresh_standard_streams"]
 
 #: A task whose worker died this many times is lost (Dask's ``allowed-failures`` is 3 reruns).
 ALLOWED_DEATHS = 4
+#: Largest pickled task (bytes) sent to a worker that is still busy: a pipe's buffer (about
+#: 200 kB on Linux) holds it, so that this process never blocks on a send while that worker
+#: blocks on sending its result (a larger task waits until the worker is idle). With the
+#: default saturation of 2 at most one such task waits in a pipe.
+QUEUED_TASK_BYTES = 65536
+#: Workers that may die before they hold a task, per worker and run, before :meth:`ForkPool.run`
+#: gives up (a process that cannot start, say for want of memory, is not forked forever).
+STARTUP_DEATHS = 10
 
 
 def fresh_standard_streams() -> None:
@@ -66,7 +75,7 @@ def _prctl() -> Any:
         import ctypes
 
         return ctypes.CDLL(None, use_errno=True).prctl
-    except (OSError, AttributeError):  # not Linux's C library: the pipe's end still stops it
+    except (OSError, AttributeError):  # not Linux's C library: the pipe's EOF still stops it
         return None
 
 
@@ -79,15 +88,29 @@ def _die_with(parent: int, prctl: Any) -> None:
         os._exit(1)
 
 
-def _serve(conn: Connection, others: list[Connection], parent: int,
-           inherited: dict[int, Callable[[Any], Any]], prctl: Any) -> None:  # fmt: skip
-    """A worker's loop: run each task it is sent, send back its result or its error
-    (``inherited``: the functions it has from the fork, by key)."""
+def _serve(conn: Connection, foreign: list[Any], parent: int,
+           inherited: dict[int, Callable[[Any], Any]], prctl: Any,
+           collect: bool) -> None:  # fmt: skip
+    """A worker's loop: run each task it is sent, send back its result or its error.
+
+    ``foreign``: the parent's end of this worker's pipe and the other workers' pipe ends
+    and sentinels, all closed here (so that the parent's death is an EOF on the pipe);
+    ``inherited``: the functions it has from the fork, by key; ``collect``: whether the
+    garbage collector was on in the parent (it is off across the fork)."""
     _die_with(parent, prctl)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    # Everything inherited is left out of this worker's collections: a collection would
+    # write to each object and so copy every page of the parent's memory (the first task of
+    # linear critical speeds ran 3-4 times slower than the next ones).
+    gc.freeze()
+    if collect:
+        gc.enable()
     fresh_standard_streams()
-    for other in others:  # the pipes of the workers forked before this one
-        other.close()
+    for end in foreign:
+        try:
+            end.close() if hasattr(end, "close") else os.close(end)
+        except OSError:
+            pass
     functions: dict[int, Callable[[Any], Any]] = dict(inherited)
     while True:
         try:
@@ -119,22 +142,36 @@ def _serve(conn: Connection, others: list[Connection], parent: int,
 class _Worker:
     """One forked process, its end of the pipe and the tasks it holds."""
 
-    def __init__(self, others: list[Connection], inherited: dict[int, Callable[[Any], Any]],
-                 prctl: Any) -> None:  # fmt: skip
+    def __init__(self, others: list[_Worker], inherited: dict[int, Callable[[Any], Any]],
+                 prctl: Any, collect: bool) -> None:  # fmt: skip
         ctx = multiprocessing.get_context("fork")
         here, there = ctx.Pipe(duplex=True)
-        self.process = ctx.Process(target=_serve, args=(there, others, os.getpid(), inherited,
-                                                         prctl),
+        foreign: list[Any] = [here]
+        for w in others:
+            foreign.append(w.conn)
+            if w.process.pid is not None:
+                foreign.append(w.process.sentinel)
+        self.process = ctx.Process(target=_serve, args=(there, foreign, os.getpid(), inherited,
+                                                         prctl, collect),
                                    daemon=True, name="railhunt-worker")  # fmt: skip
-        self.process.start()
-        there.close()  # only the worker holds its end: its death is an EOF here
+        self._there = there
         self.conn = here
         self.functions: set[int] = set(inherited)  # the function keys it knows
         self.held: collections.deque[int] = collections.deque()  # task keys in flight
         self.idle_since: float | None = None  # when it last ran out of work (perf_counter)
+        self.broken = False  # a send to it failed: read what it sent, then replace it
+
+    def start(self) -> None:
+        self.process.start()
+        self._there.close()  # only the worker holds its end: its death is an EOF here
+
+    @property
+    def started(self) -> bool:
+        return self.process.pid is not None
 
     def send(self, message: tuple[str, int, Any]) -> None:
         self.conn.send_bytes(pickle.dumps(message, protocol=pickle.HIGHEST_PROTOCOL))
+
 
 
 class ForkPool:
@@ -154,9 +191,9 @@ class ForkPool:
 
     Fork from a thread that holds no lock a worker would need (the study's main thread
     while it computes nothing), and close the pool before that thread ends: the kernel
-    ends the workers with the thread that forked them (``PR_SET_PDEATHSIG``). Objects that
-    exist at the fork are best frozen out of the garbage collector first (``gc.freeze``),
-    or a worker's first collection copies every page of this process.
+    ends the workers with the thread that forked them (``PR_SET_PDEATHSIG``). Each worker
+    leaves the objects it inherits out of its garbage collector's passes (``gc.freeze`` as
+    it starts), so that its collections do not copy this process's memory page by page.
     """
 
     def __init__(self, workers: int, saturation: int = 2,
@@ -179,6 +216,7 @@ class ForkPool:
         self._next_key = 0
         self._inherited: dict[int, Callable[[Any], Any]] = {}
         self._prctl = _prctl()
+        self._idle_deaths = 0  # workers that died holding no task, in this run
         for fn in functions:
             if id(fn) not in self._function_keys:
                 key = self._new_key(fn)
@@ -200,18 +238,20 @@ class ForkPool:
         return [w.process.pid for w in self._workers]
 
     def _fork(self) -> _Worker:
-        frozen = gc.isenabled()
-        gc.disable()  # no collection between the pipe and the fork
+        """Fork one more worker. It is registered before it starts, so that :meth:`close`
+        also stops a worker whose start a Ctrl-C interrupted."""
+        collect = gc.isenabled()
+        worker = _Worker(self._workers, self._inherited, self._prctl, collect)
+        self._workers.append(worker)
+        gc.disable()  # no collection between the pipe and the fork (enabled again in it)
         try:
             with warnings.catch_warnings():  # Python >= 3.12 on a process with threads
                 warnings.filterwarnings("ignore", message=".*multi-threaded.*fork",
                                         category=DeprecationWarning)  # fmt: skip
-                worker = _Worker([w.conn for w in self._workers], self._inherited,
-                                 self._prctl)  # fmt: skip
+                worker.start()
         finally:
-            if frozen:
+            if collect:
                 gc.enable()
-        self._workers.append(worker)
         return worker
 
     def _function_key(self, fn: Callable[[Any], Any]) -> int:
@@ -243,13 +283,22 @@ class ForkPool:
         waiting for the others.
 
         On any exception here (a Ctrl-C, an error in ``on_result``) the workers are
-        stopped and the pool closed before it propagates: their tasks are abandoned."""
+        stopped and the pool closed before it propagates: their tasks are abandoned.
+
+        Raises
+        ------
+        RuntimeError
+            The pool is closed.
+        """
+        if not self._workers:
+            raise RuntimeError("this ForkPool is closed: it has no workers")
         key_fn = self._function_key(fn)
         items = list(items)
         pending = collections.deque(range(len(items)))
         deaths = collections.Counter()
         lost: list[tuple[Any, str]] = []
         left = len(items)
+        self._idle_deaths = 0
         try:
             while True:
                 extra = more(left == 0) if more is not None else None
@@ -262,11 +311,17 @@ class ForkPool:
                 # One task to each idle worker first, then the next ones behind them.
                 for level in range(1, self.saturation + 1):
                     for worker in list(self._workers):
+                        if worker.broken:
+                            continue
                         try:
                             self._feed(worker, key_fn, items, pending, level)
-                        except OSError:  # it died while it held nothing
-                            left -= self._replace(worker, items, pending, deaths, lost)
+                        except OSError:  # it died: read what it sent, then replace it
+                            worker.broken = True
+                            if not worker.held:
+                                left -= self._replace(worker, items, pending, deaths, lost)
                 by_conn = {w.conn: w for w in self._workers if w.held}
+                if not by_conn:  # a worker replaced just now holds nothing yet: feed it
+                    continue
                 for conn in wait(list(by_conn)):
                     worker = by_conn[conn]
                     try:
@@ -283,6 +338,8 @@ class ForkPool:
                         on_result(value)
                     else:
                         lost.append((items[task], value))
+                    if worker.broken and not worker.held:
+                        left -= self._replace(worker, items, pending, deaths, lost)
         except BaseException:
             self.close(wait=False)
             raise
@@ -295,17 +352,19 @@ class ForkPool:
 
     def _feed(self, worker: _Worker, key_fn: int, items: Sequence[Any],
               pending: collections.deque, level: int) -> None:  # fmt: skip
-        """Send ``worker`` tasks until it holds ``level`` of them (the function first)."""
+        """Send ``worker`` tasks until it holds ``level`` of them (the function first). To
+        a worker that is busy, only tasks of at most :data:`QUEUED_TASK_BYTES`."""
         while pending and len(worker.held) < level:
+            task = pending[0]
+            data = pickle.dumps(("task", task, (key_fn, items[task])),
+                                protocol=pickle.HIGHEST_PROTOCOL)  # fmt: skip
+            if worker.held and len(data) > QUEUED_TASK_BYTES:
+                return  # it would wait in the pipe: sent when the worker is idle
             if key_fn not in worker.functions:
                 worker.send(("function", key_fn, self._functions[key_fn]))
                 worker.functions.add(key_fn)
-            task = pending.popleft()
-            try:
-                worker.send(("task", task, (key_fn, items[task])))
-            except BaseException:
-                pending.appendleft(task)
-                raise
+            worker.conn.send_bytes(data)
+            pending.popleft()
             worker.held.append(task)
             worker.idle_since = None
 
@@ -319,6 +378,11 @@ class ForkPool:
         self._workers.remove(worker)
         n_lost = 0
         held = list(worker.held)
+        if not held:
+            self._idle_deaths += 1
+            if self._idle_deaths > STARTUP_DEATHS * max(1, len(self._workers) + 1):
+                raise RuntimeError(f"the worker processes keep dying before they run a task "
+                                   f"(exit code {code}, {self._idle_deaths} times)")
         # A worker runs its tasks in the order it got them: the first was running when it
         # died, the others waited behind it and run again without a mark.
         for task in reversed(held[1:]):
@@ -338,6 +402,11 @@ class ForkPool:
     def close(self, wait: bool = True) -> None:
         """Stop the workers (after their current task when ``wait``, at once otherwise)."""
         workers, self._workers = self._workers, []
+        for w in workers:
+            if not w.started:  # registered, its start interrupted before the fork
+                w.conn.close()
+                w._there.close()
+        workers = [w for w in workers if w.started]
         for w in workers:
             try:
                 if wait:

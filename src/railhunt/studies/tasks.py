@@ -31,7 +31,6 @@ same in this process, on a local cluster and on a remote one.
 from __future__ import annotations
 
 import functools
-import gc
 import math
 import os
 import signal
@@ -319,11 +318,9 @@ class TaskEngine:
         self._warm_up()
         self.in_process = False
         self.forked = True
-        # The objects that exist now are left out of the garbage collector's passes, in the
-        # workers too: a collection would otherwise write to every one of them and so copy
-        # each page of this process's memory into each worker (a worker's first task of
-        # the linear critical speed ran 3-4 times slower than the next ones).
-        gc.freeze()
+        # Each worker leaves what it inherits out of its garbage collector's passes
+        # (railhunt.studies.forkpool): a collection would otherwise write to every object
+        # and so copy each page of this process's memory into the worker.
         try:
             from railhunt.studies.forkpool import ForkPool
 
@@ -334,8 +331,6 @@ class TaskEngine:
                                  functions=tuple(self._pool_fns.values()))  # fmt: skip
         except Exception as exc:  # noqa: BLE001 - the study can still finish here
             self._cluster_failed(exc)
-        finally:
-            gc.unfreeze()
 
     def _fork_early(self) -> bool:
         """Whether to fork the workers before any point is timed (:data:`EARLY_FORK_POINTS`)."""
