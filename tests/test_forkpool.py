@@ -362,3 +362,23 @@ def test_a_ctrl_c_while_a_worker_starts_leaves_no_worker(monkeypatch):
     for pid in started:
         with pytest.raises((ProcessLookupError, ChildProcessError)):
             _wait_gone(pid, 5.0)
+
+
+def test_workers_that_die_as_they_start_are_not_forked_forever(monkeypatch):
+    """A worker that cannot start (here: it exits at once) is replaced a bounded number of
+    times: its tasks are lost after ALLOWED_DEATHS each, or, when it dies before it holds
+    any, the run stops with what to do."""
+    from railhunt.studies import forkpool
+
+    monkeypatch.setattr(forkpool, "_die_with", lambda parent, prctl: os._exit(3))
+    pool = ForkPool(1)
+    try:
+        lost = pool.run(_square, [1, 2], print)
+    except RuntimeError as exc:
+        assert "keep dying before they run a task (exit code 3" in str(exc)
+        assert "workers=1" in str(exc)
+    else:
+        assert [item for item, _ in lost] == [1, 2]
+        assert all(r.startswith("KilledWorker: the worker process died (exit code 3) 4 times")
+                   for _, r in lost)  # fmt: skip
+    pool.close()

@@ -381,8 +381,11 @@ class ForkPool:
         if not held:
             self._idle_deaths += 1
             if self._idle_deaths > STARTUP_DEATHS * max(1, len(self._workers) + 1):
-                raise RuntimeError(f"the worker processes keep dying before they run a task "
-                                   f"(exit code {code}, {self._idle_deaths} times)")
+                raise RuntimeError(f"the forked worker processes keep dying before they run "
+                                   f"a task (exit code {code}, {self._idle_deaths} times); "
+                                   "the points done are kept: run again with one worker "
+                                   "(workers=1, --workers 1) or "
+                                   "RAILHUNT_WORKER_START=spawn")  # fmt: skip
         # A worker runs its tasks in the order it got them: the first was running when it
         # died, the others waited behind it and run again without a mark.
         for task in reversed(held[1:]):
