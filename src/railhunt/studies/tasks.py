@@ -1,8 +1,9 @@
 """A study's points grouped into tasks sized by their measured cost, and where tasks run.
 
-The machinery around a point (a Dask task, a write to the results file, a progress tick)
-costs about a millisecond; a plain function or a closed form costs a microsecond, the
-linear critical speed about 10 ms, a nonlinear search a few tenths of a second. So:
+The machinery around a task (a Dask task about a millisecond, a forked worker's about
+20 us, a write to the results file, a progress tick) costs up to about a millisecond; a
+plain function or a closed form costs a microsecond, the linear critical speed about
+10 ms, a nonlinear search a few tenths of a second. So:
 
 1. The first points are evaluated in this process and timed (at least two, and as many
    as fit in :data:`PROBE_SECONDS`): their median is the cost of a point.
@@ -14,8 +15,8 @@ linear critical speed about 10 ms, a nonlinear search a few tenths of a second. 
    whose remaining points are estimated to cost less than starting a local cluster
    (:data:`CLUSTER_START_S`), or a program read from standard input (``python - <
    study.py``), which worker processes cannot import again (one line says so).
-   On Linux the local cluster's workers are forked
-   (:func:`railhunt.studies.execute.worker_start_method`): copies of this process with its
+   On Linux the local workers are forked (:func:`railhunt.studies.execute.worker_start_method`,
+   :class:`railhunt.studies.forkpool.ForkPool`): copies of this process with its
    compiled code, up in a few milliseconds (:data:`FORK_START_S`); a vehicle study of
    :data:`EARLY_FORK_POINTS` points or more forks them before any point is timed, and its
    first tasks (one point per worker) are timed on the workers. Spawned workers are
