@@ -154,7 +154,14 @@ def test_workers_exit_when_the_study_process_is_killed(tmp_path):
     proc.kill()
     proc.wait(timeout=30)
     # The workers are busy for 60 s: they must be gone long before.
-    deadline = time.monotonic() + 20
+    alive = _still_running(pids, 20.0)
+    assert not alive, f"workers {alive} outlived the study's process"
+
+
+def _still_running(pids: list[int], timeout: float) -> set[int]:
+    """The processes of ``pids`` still running (not gone, not zombies) after waiting up to
+    ``timeout`` s for them to end."""
+    deadline = time.monotonic() + timeout
     alive = set(pids)
     while alive and time.monotonic() < deadline:
         for pid in list(alive):
@@ -165,8 +172,8 @@ def test_workers_exit_when_the_study_process_is_killed(tmp_path):
                         alive.discard(pid)
             except (ProcessLookupError, FileNotFoundError):
                 alive.discard(pid)
-        time.sleep(0.2)
-    assert not alive, f"workers {alive} outlived the study's process"
+        time.sleep(0.1)
+    return alive
 
 
 def test_bad_worker_count_is_one_clear_line():
@@ -329,17 +336,7 @@ def test_workers_exit_on_the_pipes_end_without_the_death_signal(tmp_path):
     pids = [int(p) for p in proc.stdout.readline().split()]
     proc.kill()
     proc.wait(timeout=30)
-    deadline = time.monotonic() + 20
-    alive = set(pids)
-    while alive and time.monotonic() < deadline:
-        for pid in list(alive):
-            try:
-                with open(f"/proc/{pid}/stat") as f:
-                    if f.read().split()[2] == "Z":
-                        alive.discard(pid)
-            except FileNotFoundError:
-                alive.discard(pid)
-        time.sleep(0.1)
+    alive = _still_running(pids, 20.0)
     assert not alive, f"workers {alive} outlived the study's process"
 
 

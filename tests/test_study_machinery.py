@@ -152,6 +152,17 @@ def _script(out: Path, *, sleep: float, workers: int, task: float, samples: int,
                                           setup=setup)  # fmt: skip
 
 
+def _forked_logging_pids(pids: Path) -> str:
+    """``setup`` for :data:`SCRIPT`: workers as if they cost nothing (forked at once), and
+    each point appends the id of the process that evaluates it to ``pids``."""
+    return ("tasks.FORK_START_S = 0.0  # as if workers cost nothing\n"
+            "    import os\n"
+            "    real = slow\n"
+            "    def slow(**x):\n"
+            f"        open({str(pids)!r}, 'a').write(f'{{os.getpid()}}\\n')\n"
+            "        return real(**x)")  # fmt: skip
+
+
 def test_a_program_read_from_standard_input_runs_in_process_with_one_line(tmp_path):
     """``python - < study.py`` with spawned workers: they cannot import the program again
     (a local cluster's start died with 'Nanny failed to start' and a traceback); the study
@@ -174,12 +185,7 @@ def test_a_program_read_from_standard_input_runs_on_forked_workers(tmp_path):
     """With forked workers (Linux) nothing is imported again: ``python - < study.py`` runs
     on the workers, silently, and gives the same file as in one process."""
     pids = tmp_path / "pids.txt"
-    setup = ("tasks.FORK_START_S = 0.0  # as if workers cost nothing\n"
-             "    import os\n"
-             "    real = slow\n"
-             "    def slow(**x):\n"
-             f"        open({str(pids)!r}, 'a').write(f'{{os.getpid()}}\\n')\n"
-             "        return real(**x)")  # fmt: skip
+    setup = _forked_logging_pids(pids)
     code = _script(tmp_path / "stdin.csv", sleep=0.005, workers=2, task=0.02, samples=8,
                    setup=setup)  # fmt: skip
     done = subprocess.run([sys.executable, "-"], input=code, capture_output=True, text=True,
@@ -242,12 +248,7 @@ def test_a_study_on_forked_workers_killed_mid_task_resumes_to_the_same_file(tmp_
     an uninterrupted run's."""
     samples, per_point, task = 16, 0.02, 0.1  # 80 points
     pids = tmp_path / "pids.txt"
-    setup = ("tasks.FORK_START_S = 0.0  # as if workers cost nothing\n"
-             "    import os\n"
-             "    real = slow\n"
-             "    def slow(**x):\n"
-             f"        open({str(pids)!r}, 'a').write(f'{{os.getpid()}}\\n')\n"
-             "        return real(**x)")  # fmt: skip
+    setup = _forked_logging_pids(pids)
     ref, part = tmp_path / "ref.csv", tmp_path / "part.csv"
     for name, out, resume in (("ref", ref, False), ("part", part, False),
                               ("resume", part, True)):  # fmt: skip
